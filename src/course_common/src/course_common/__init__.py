@@ -1,0 +1,1 @@
+"""Helpers shared by the course's packages (no ROS imports here)."""

@@ -1,0 +1,43 @@
+import io
+import sys
+
+import pytest
+
+from course_common.keyboard import KeyReader, NoTerminalError
+from course_common.testing import PtyProgram
+
+
+def test_without_a_terminal_the_reader_refuses_with_one_sentence():
+    with pytest.raises(NoTerminalError) as err:
+        with KeyReader('my_teleop', stream=io.StringIO()):
+            pass
+    message = str(err.value)
+    assert message.startswith('my_teleop reads the keyboard')
+    assert 'not a terminal' in message and '\n' not in message
+
+
+ECHO_KEYS = '''
+from course_common.keyboard import KeyReader, write_line
+with KeyReader('echo') as keys:
+    write_line('ready')
+    while True:
+        key = keys.read(5.0)
+        if key in (None, 'q'):
+            break
+        write_line('key %r' % key)
+write_line('bye')
+'''
+
+
+def test_keys_arrive_one_byte_at_a_time_without_enter():
+    program = PtyProgram([sys.executable, '-c', ECHO_KEYS])
+    try:
+        program.wait_for_output('ready', 10)
+        program.type('i\x1b[A')
+        out = program.wait_for_output("key 'A'", 5)
+        assert "key 'i'" in out and "key '\\x1b'" in out and "key '['" in out
+        program.type('q')
+        program.wait_for_output('bye', 5)
+        assert program.process.wait(5) == 0
+    finally:
+        program.stop()
