@@ -2,6 +2,7 @@
 # Installs the Debian packages the workspace needs (only the missing ones) and builds it.
 #
 # Idempotent: with everything installed and nothing changed it only re-runs catkin_make (a few seconds).
+# Usage: tools/setup.sh [--install-only]
 # Environment:
 #   CATKIN_BUILD_BASE   folder that receives build/ and devel/ (default: the repository root)
 #   CATKIN_WHITELIST    ';'-separated packages to build (default: all of them)
@@ -48,5 +49,6 @@ build() {
 }
 
 [ "${COURSE_SKIP_INSTALL:-0}" = 1 ] || install_missing
+[ "${1:-}" = --install-only ] && exit 0
 mkdir -p "${CATKIN_BUILD_BASE:-$ROOT}"
 build

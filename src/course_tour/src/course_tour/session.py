@@ -1,0 +1,137 @@
+"""A private ROS master for the tour, launch files started and stopped on it, and small ROS helpers.
+
+The tour is one ROS node (`course_tour`) on its own master, on a free port, so that it never meets a
+master the user already runs. Each lab starts its launch files here and stops them with SIGINT, as
+Ctrl-C in a terminal would, so the simulators save their pictures at shutdown.
+"""
+import math
+import os
+import signal
+import socket
+import subprocess
+import threading
+import time
+
+import rosgraph
+import rospy
+
+from course_common.testing import wait_until
+
+
+def free_port():
+    with socket.socket() as probe:
+        probe.bind(('127.0.0.1', 0))
+        return probe.getsockname()[1]
+
+
+class Launched:
+    """One roslaunch process; its output goes to a log file that labs can read back."""
+
+    def __init__(self, argv, log_path, env):
+        self.log_path = log_path
+        self._log = open(log_path, 'w')
+        self.process = subprocess.Popen(argv, stdout=self._log, stderr=subprocess.STDOUT,
+                                        stdin=subprocess.DEVNULL, env=env, start_new_session=True)
+
+    def output(self):
+        with open(self.log_path, errors='replace') as log:
+            return log.read()
+
+    def stop(self, timeout=20.0):
+        if self.process.poll() is None:
+            os.killpg(self.process.pid, signal.SIGINT)
+            try:
+                self.process.wait(timeout)
+            except subprocess.TimeoutExpired:
+                os.killpg(self.process.pid, signal.SIGKILL)
+                self.process.wait()
+        self._log.close()
+
+
+class Recorder:
+    """Keeps every message of a topic (with its arrival time) for a lab to measure afterwards."""
+
+    def __init__(self, topic, message_type):
+        self.messages = []
+        self._lock = threading.Lock()
+        self._subscriber = rospy.Subscriber(topic, message_type, self._keep, queue_size=1000)
+
+    def _keep(self, message):
+        with self._lock:
+            self.messages.append(message)
+
+    def snapshot(self):
+        with self._lock:
+            return list(self.messages)
+
+    def close(self):
+        self._subscriber.unregister()
+
+
+def path_length(points):
+    """Length of the polyline through (x, y) points."""
+    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
+
+
+class Session:
+    """The tour's master, its output folder, and what the labs start on it."""
+
+    def __init__(self, output_dir):
+        self.output_dir = output_dir
+        self.log_dir = os.path.join(output_dir, 'logs')
+        os.makedirs(self.log_dir, exist_ok=True)
+        self.env = dict(os.environ)
+        self._launched = []
+        self._master = None
+
+    def __enter__(self):
+        uri = 'http://localhost:%d' % free_port()
+        self.env['ROS_MASTER_URI'] = uri
+        os.environ['ROS_MASTER_URI'] = uri
+        self._master = Launched(['roscore', '-p', uri.rsplit(':', 1)[1]],
+                                os.path.join(self.log_dir, 'roscore.log'), self.env)
+        master = rosgraph.Master('/course_tour')
+        wait_until(master.is_online, 30, what='the ROS master of the tour')
+        rospy.init_node('course_tour', disable_signals=True)
+        return self
+
+    def __exit__(self, *exc):
+        for launched in reversed(self._launched):
+            launched.stop()
+        rospy.signal_shutdown('tour finished')
+        self._master.stop()
+        return False
+
+    def picture(self, name):
+        return os.path.join(self.output_dir, name)
+
+    def launch(self, package, launch_file, **args):
+        """Start `roslaunch package launch_file name:=value ...` on the tour's master."""
+        argv = ['roslaunch', '--wait', package, launch_file]
+        argv += ['%s:=%s' % (key, value) for key, value in args.items()]
+        log_path = os.path.join(self.log_dir, '%s.log' % os.path.splitext(launch_file)[0])
+        launched = Launched(argv, log_path, self.env)
+        self._launched.append(launched)
+        return launched
+
+    def stop(self, launched):
+        launched.stop()
+        self._launched.remove(launched)
+
+    @staticmethod
+    def wait_until(condition, timeout, what):
+        return wait_until(condition, timeout, what=what, poll=0.05)
+
+    @staticmethod
+    def call_trigger(service, timeout=15.0):
+        """Call a std_srvs/Trigger service once it exists; returns its message (a saved file's path)."""
+        from std_srvs.srv import Trigger
+        rospy.wait_for_service(service, timeout)
+        response = rospy.ServiceProxy(service, Trigger)()
+        if not response.success:
+            raise RuntimeError('%s failed: %s' % (service, response.message))
+        return response.message
+
+    @staticmethod
+    def elapsed_since(start):
+        return time.monotonic() - start

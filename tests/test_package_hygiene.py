@@ -1,0 +1,25 @@
+"""Every package passes catkin_lint -W2 and the README's commands exist as the README prints them."""
+import os
+import re
+import subprocess
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def test_catkin_lint_is_clean_at_warning_level_2():
+    result = subprocess.run(['catkin_lint', '-W2', '--strict', os.path.join(ROOT, 'src')],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
+    assert result.returncode == 0, result.stdout
+
+
+def test_readme_commands_are_executable_scripts_here():
+    readme = open(os.path.join(ROOT, 'README.md')).read()
+    commands = set(re.findall(r'^\s*(\./[\w.-]+)', readme, re.MULTILINE))
+    assert {'./demo.sh', './test.sh'} <= commands
+    for command in commands:
+        assert os.access(os.path.join(ROOT, command), os.X_OK), command
+
+
+def test_ci_runs_exactly_the_readme_test_command():
+    ci = open(os.path.join(ROOT, '.ci', 'run')).read()
+    assert re.search(r'^\./test\.sh$', ci, re.MULTILINE)
