@@ -2,8 +2,12 @@
 # the workspace: ROS environment of the devel space, Debian's python3 first, ROS sockets on loopback.
 _course_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
+# devel/setup.bash reads unset variables: callers running with `set -u` must not abort in it.
+_course_nounset=$(set -o | awk '$1 == "nounset" {print $2}')
+set +u
 # shellcheck disable=SC1091
 source "${CATKIN_BUILD_BASE:-$_course_root}/devel/setup.bash"
+[ "$_course_nounset" = on ] && set -u
 # By default nothing is reachable from other machines: master and nodes listen on loopback.
 # For two machines set ROS_MASTER_URI and ROS_IP yourself (README: "Two machines").
 if [ -z "${ROS_IP:-}" ]; then
@@ -11,4 +15,4 @@ if [ -z "${ROS_IP:-}" ]; then
 fi
 export ROS_MASTER_URI="${ROS_MASTER_URI:-http://localhost:11311}"
 export PYTHONNOUSERSITE=1
-unset _course_root
+unset _course_root _course_nounset

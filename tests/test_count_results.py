@@ -1,0 +1,55 @@
+"""The closing count of ./test.sh: rostest failures count, wrappers do not double-count, skips fail."""
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+COUNTER = os.path.join(ROOT, 'tools', 'count_results.py')
+
+
+def write(folder, name, cases):
+    body = ''.join('<testcase classname="t" name="%s">%s</testcase>' % (case, inner)
+                   for case, inner in cases)
+    with open(os.path.join(folder, name), 'w') as xml:
+        xml.write('<?xml version="1.0"?><testsuite tests="%d">%s</testsuite>' % (len(cases), body))
+
+
+def run_counter(folder, *extra):
+    result = subprocess.run([sys.executable, COUNTER, str(folder)] + list(extra),
+                            stdout=subprocess.PIPE, universal_newlines=True)
+    return result.returncode, result.stdout.splitlines()[-1], result.stdout
+
+
+def test_a_failing_case_inside_a_rostest_counts_as_failed(tmp_path):
+    write(tmp_path, 'rosunit-square.xml', [('corners', '<failure message="12 cm off"/>'), ('closes', '')])
+    write(tmp_path, 'rostest-test_square.xml', [('testsquare', '')])
+    code, last, out = run_counter(tmp_path)
+    assert (code, last) == (1, '1 passed, 1 failed')
+    assert 'FAILED: t.corners' in out
+
+
+def test_a_rostest_whose_node_died_counts_as_failed(tmp_path):
+    write(tmp_path, 'rostest-test_square.xml', [('testsquare', '<failure message="no results"/>')])
+    assert run_counter(tmp_path)[:2] == (1, '0 passed, 1 failed')
+
+
+def test_passing_pytest_and_rostest_cases_are_counted_once(tmp_path):
+    write(tmp_path, 'pytest.xml', [('a', ''), ('b', '')])
+    write(tmp_path, 'rosunit-x.xml', [('c', '')])
+    write(tmp_path, 'rostest-test_x.xml', [('testx', '')])
+    assert run_counter(tmp_path)[:2] == (0, '3 passed, 0 failed')
+
+
+def test_skipped_cases_are_reported_and_fail_the_run(tmp_path):
+    write(tmp_path, 'pytest.xml', [('a', ''), ('b', '<skipped/>')])
+    assert run_counter(tmp_path)[:2] == (1, '1 passed, 0 failed, 1 skipped')
+
+
+def test_a_step_that_failed_before_writing_results_is_a_failure(tmp_path):
+    write(tmp_path, 'pytest.xml', [('a', '')])
+    code, last, out = run_counter(tmp_path, 'building the tests')
+    assert (code, last) == (1, '1 passed, 1 failed') and 'FAILED: building the tests' in out
+
+
+def test_no_results_at_all_is_not_a_pass(tmp_path):
+    assert run_counter(tmp_path)[:2] == (1, '0 passed, 0 failed')
