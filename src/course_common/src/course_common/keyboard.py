@@ -40,7 +40,10 @@ class KeyReader:
         return self
 
     def __exit__(self, *exc):
-        termios.tcsetattr(self.stream.fileno(), termios.TCSADRAIN, self._saved_mode)
+        try:
+            termios.tcsetattr(self.stream.fileno(), termios.TCSADRAIN, self._saved_mode)
+        except (termios.error, OSError):
+            pass  # the terminal was closed under us: there is no mode left to restore
         return False
 
     def read(self, timeout=None):

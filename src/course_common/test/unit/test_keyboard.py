@@ -41,3 +41,21 @@ def test_keys_arrive_one_byte_at_a_time_without_enter():
         assert program.process.wait(5) == 0
     finally:
         program.stop()
+
+
+CLOSE_TERMINAL_WHILE_RAW = '''
+import os, sys
+from course_common.keyboard import KeyReader
+with KeyReader('closer') as keys:
+    os.close(sys.stdin.fileno())  # as if the terminal disappeared under the program
+print('left cleanly')
+'''
+
+
+def test_leaving_raw_mode_after_the_terminal_is_gone_is_not_an_error():
+    program = PtyProgram([sys.executable, '-c', CLOSE_TERMINAL_WHILE_RAW])
+    try:
+        assert program.process.wait(10) == 0
+        assert 'left cleanly' in program.read_available()
+    finally:
+        program.stop()

@@ -1,0 +1,104 @@
+"""Helpers for the my_turtle rostests: watch turtle1's poses, run a node and keep what it prints."""
+import math
+import re
+import threading
+import time
+
+import rospy
+from turtlesim.msg import Pose
+
+from course_common.testing import PtyProgram, wait_until
+
+POSE_RATE_HZ = 62.5  # turtlesim publishes the pose at every 16 ms tick
+# A pose line as the slide shows it, e.g. "[ INFO] [1513815819.814175430]: x: 8.46, y: 5.54"
+POSE_LINE = r'^\[ INFO\] \[\d+\.\d+\]: x: (\d+\.\d\d), y: (\d+\.\d\d)$'
+# rosconsole wraps every line in colour codes (ESC[0m for INFO), which a terminal does not show.
+COLOUR_CODE = re.compile(r'\x1b\[[0-9;]*m')
+
+
+class PoseWatch:
+    """Keeps every turtle1 pose with the (monotonic) time it arrived."""
+
+    def __init__(self, topic='/turtle1/pose'):
+        self.samples = []
+        self._lock = threading.Lock()
+        rospy.Subscriber(topic, Pose, self._store)
+        wait_until(lambda: self.samples, 30, 'the first pose on %s' % topic)
+
+    def _store(self, pose):
+        with self._lock:
+            self.samples.append((time.monotonic(), pose))
+
+    def latest(self):
+        with self._lock:
+            return self.samples[-1][1]
+
+    def wait_for(self, condition, timeout, what):
+        """Wait until condition(latest pose) holds; returns that pose."""
+        return wait_until(lambda: condition(self.latest()) and self.latest(), timeout, what)
+
+    def record(self, seconds):
+        """The poses that arrive during the next `seconds` seconds, as (time, pose) pairs."""
+        with self._lock:
+            first = len(self.samples)
+        wait_until(lambda: self.samples[-1][0] - self.samples[first][0] >= seconds
+                   if len(self.samples) > first else False,
+                   seconds + 10, 'poses over %.1f s' % seconds)
+        with self._lock:
+            return self.samples[first:]
+
+
+def path_length(samples):
+    """Distance travelled along the recorded poses, in metres."""
+    return sum(math.hypot(b.x - a.x, b.y - a.y) for (_, a), (_, b) in zip(samples, samples[1:]))
+
+
+def duration(samples):
+    return samples[-1][0] - samples[0][0]
+
+
+def turned(samples):
+    """Heading change along the recorded poses in radians (counter-clockwise positive, unwrapped)."""
+    return sum(math.remainder(b.theta - a.theta, 2 * math.pi)
+               for (_, a), (_, b) in zip(samples, samples[1:]))
+
+
+class PrintingNode(PtyProgram):
+    """A node started with rosrun, printing into a pseudo-terminal as it would into a terminal
+    (into a pipe rosconsole would hold lines back in its buffer). A thread keeps reading, or the
+    node would block once the terminal's buffer is full."""
+
+    def __init__(self, package, executable):
+        super().__init__(['rosrun', package, executable])
+        self._draining = True
+        self._drain_thread = threading.Thread(target=self._drain, daemon=True)
+        self._drain_thread.start()
+
+    def _drain(self):
+        while self._draining:
+            self.read_available(0.05)
+
+    @property
+    def lines(self):
+        """The complete lines printed so far, as a terminal shows them."""
+        return [COLOUR_CODE.sub('', line) for line in self.output.split('\r\n')[:-1]]
+
+    def wait_for_line(self, text, timeout):
+        return wait_until(lambda: any(text in line for line in self.lines), timeout,
+                          'the node to print %r' % text)
+
+    def stop(self, timeout=10):
+        """Ctrl-C, as in the terminal; returns the exit status."""
+        self._draining = False
+        self._drain_thread.join()
+        return super().stop(timeout)
+
+
+def hold_key(terminal, key, condition, timeout, what):
+    """Keep `key` pressed in a PtyProgram (it repeats every 50 ms, as a held key does) until
+    condition() holds."""
+    def pressed_until():
+        terminal.type(key)
+        terminal.read_available(0.05)
+        return condition()
+    return wait_until(pressed_until, timeout, what)
