@@ -2,37 +2,125 @@
 and returns a few summary lines and the pictures it saved."""
 import collections
 import math
+import re
 import time
 
+import rospy
+from turtlesim.msg import Pose
+from turtlesim.srv import Kill
+
+from course_common.testing import PtyProgram
 from course_tour.session import Recorder, path_length
 
 LabReport = collections.namedtuple('LabReport', 'lines pictures')
 Lab = collections.namedtuple('Lab', 'name seed title run')
 
 
+def _turtle_poses(name):
+    return Recorder('/%s/pose' % name, Pose)
+
+
+def _points(recorder):
+    return [(pose.x, pose.y) for pose in recorder.snapshot()]
+
+
+def _save_canvas(session, simulator_node, file_name):
+    """Ask a running turtlesim (named simulator_node by its launch file) to write its canvas."""
+    path = session.picture(file_name)
+    rospy.set_param('/%s/canvas_png' % simulator_node, path)
+    return session.call_trigger('/%s/save_canvas' % simulator_node)
+
+
 def turtlesim_square(session):
     """turtlesim's draw_square drives turtle1 once round its 2 m square; the canvas is saved."""
-    from turtlesim.msg import Pose
     canvas = session.picture('turtlesim-square.png')
-    poses = Recorder('/turtle1/pose', Pose)
+    poses = _turtle_poses('turtle1')
     launched = session.launch('turtlesim', 'draw_square_demo.launch', canvas_png=canvas)
     start = time.monotonic()
-
-    def square_closed():
-        points = [(p.x, p.y) for p in poses.snapshot()]
-        return (len(points) > 1 and path_length(points) > 7.8
-                and math.hypot(points[-1][0] - points[0][0], points[-1][1] - points[0][1]) < 0.15)
-
-    session.wait_until(square_closed, 90, 'turtle1 to drive round the square')
+    # Four sides and four turns: draw_square logs "Reached goal" after each.
+    session.wait_until(lambda: launched.output().count('Reached goal') >= 8, 90,
+                       'draw_square to reach the 8 goals of one square')
     seconds = session.elapsed_since(start)
-    points = [(p.x, p.y) for p in poses.snapshot()]
+    points = _points(poses)
     poses.close()
     session.stop(launched)  # the simulator writes the canvas as it shuts down
     gap = math.hypot(points[-1][0] - points[0][0], points[-1][1] - points[0][1])
-    return LabReport(['turtle1 drove %.2f m round the square in %.0f s; it closed within %.3f m'
+    return LabReport(['turtle1 drove %.2f m round the square in %.0f s and ended %.2f m from its start'
                       % (path_length(points), seconds, gap)], [canvas])
+
+
+def my_turtle_pose(session):
+    """000, stage 2: my_turtle_pose drives forward at 0.5 m/s and prints every pose."""
+    poses = _turtle_poses('turtle1')
+    launched = session.launch('my_turtle', 'move_pose.launch')
+    session.wait_until(lambda: path_length(_points(poses)) > 2.0, 30, 'turtle1 to drive 2 m')
+    points = _points(poses)
+    first, last = poses.snapshot()[0], poses.snapshot()[-1]
+    poses.close()
+    canvas = _save_canvas(session, 'turtlesim_node', 'my_turtle-forward.png')
+    session.stop(launched)
+    printed = re.findall(r'x: \d+\.\d\d, y: \d+\.\d\d', launched.output())
+    return LabReport([
+        'turtle1 drove %.2f m along +x, from x=%.2f to x=%.2f (y stayed %.2f)'
+        % (path_length(points), first.x, last.x, last.y),
+        'my_turtle_pose printed %d pose lines, the last: "%s"' % (len(printed), printed[-1]),
+    ], [canvas])
+
+
+# Keys typed into the teleop: speed up (w), forward (i), left (j), stop (k), as a student would.
+# The teleop stops smoothly after 4 passes (0.4 s) without a key, so keys repeat every 0.2 s.
+TELEOP_SCRIPT = [('w', 8), ('i', 15), ('j', 8), ('i', 15), ('j', 8), ('i', 15), ('k', 2)]
+
+
+def my_turtle_teleop(session):
+    """000, stage 3: the keyboard teleop drives turtle1 through my_turtle_node's relay."""
+    poses = _turtle_poses('turtle1')
+    chain = PtyProgram(['roslaunch', '--wait', 'my_turtle', 'teleop_chain.launch'], env=session.env)
+    try:
+        chain.wait_for_output('currently:', 60)
+        session.wait_until(lambda: poses.snapshot(), 30, 'the pose of turtle1')
+        for key, repeats in TELEOP_SCRIPT:
+            for _ in range(repeats):
+                chain.type(key)
+                time.sleep(0.2)  # typing speed of the script, not a wait for a result
+        session.wait_until(lambda: poses.snapshot()[-1].linear_velocity == 0.0, 10,
+                           'turtle1 to stop after k')
+        canvas = _save_canvas(session, 'turtlesim_node', 'my_turtle-teleop.png')
+        speeds = re.findall(r'currently:\s+speed ([\d.]+)\s+turn ([\d.]+)', chain.read_available())
+    finally:
+        chain.stop()
+    points = _points(poses)
+    poses.close()
+    return LabReport([
+        'typed %d keys; the teleop ended at speed %s m/s, turn %s rad/s'
+        % (sum(n for _, n in TELEOP_SCRIPT), speeds[-1][0], speeds[-1][1]),
+        'turtle1 followed the relay for %.2f m and stopped on k' % path_length(points),
+    ], [canvas])
+
+
+def report_shapes(session):
+    """002, exercise 5: the spawned turtle `robotics` drives a square, then a triangle."""
+    lines, pictures = [], []
+    for shape in ('square', 'triangle'):
+        poses = _turtle_poses('robotics')
+        launched = session.launch('ros_exercises', 'exercise5.launch', shape=shape)
+        finished = session.wait_until(
+            lambda: re.search(r'Finished the %s at .*, ([\d.]+) m from the start' % shape,
+                              launched.output()), 120, 'the %s to be finished' % shape)
+        points = _points(poses)
+        poses.close()
+        # The canvas without the turtle on it: only the drawn figure.
+        rospy.ServiceProxy('/kill', Kill)('robotics')
+        pictures.append(_save_canvas(session, 'turtlesim', 'ros_exercises-%s.png' % shape))
+        session.stop(launched)
+        lines.append('%s of 3 m sides: %.2f m driven, closed within %.3f m'
+                     % (shape, path_length(points), float(finished.group(1))))
+    return LabReport(lines, pictures)
 
 
 LABS = [
     Lab('square', 'turtlesim', 'turtlesim draws a square (draw_square)', turtlesim_square),
+    Lab('turtle', '000', 'my_turtle drives forward and prints the pose', my_turtle_pose),
+    Lab('teleop', '000', 'keyboard teleop -> my_turtle_node -> turtle1', my_turtle_teleop),
+    Lab('report', '002', 'the report\'s square and triangle (exercise 5)', report_shapes),
 ]

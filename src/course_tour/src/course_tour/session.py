@@ -27,7 +27,8 @@ def free_port():
 class Launched:
     """One roslaunch process; its output goes to a log file that labs can read back."""
 
-    def __init__(self, argv, log_path, env):
+    def __init__(self, argv, log_path, env, params_before=()):
+        self.params_before = set(params_before)
         self.log_path = log_path
         self._log = open(log_path, 'w')
         self.process = subprocess.Popen(argv, stdout=self._log, stderr=subprocess.STDOUT,
@@ -109,14 +110,21 @@ class Session:
         """Start `roslaunch package launch_file name:=value ...` on the tour's master."""
         argv = ['roslaunch', '--wait', package, launch_file]
         argv += ['%s:=%s' % (key, value) for key, value in args.items()]
-        log_path = os.path.join(self.log_dir, '%s.log' % os.path.splitext(launch_file)[0])
-        launched = Launched(argv, log_path, self.env)
+        log_path = os.path.join(self.log_dir, '%02d-%s.log' % (len(os.listdir(self.log_dir)),
+                                                              os.path.splitext(launch_file)[0]))
+        launched = Launched(argv, log_path, self.env, rospy.get_param_names())
         self._launched.append(launched)
         return launched
 
     def stop(self, launched):
+        """Stop a launch and remove the parameters that came with it: the master outlives the
+        lab, and a simulator started later must not find (say) an old ~canvas_png and write its
+        picture over an earlier lab's."""
         launched.stop()
         self._launched.remove(launched)
+        for name in set(rospy.get_param_names()) - launched.params_before:
+            if rospy.has_param(name):
+                rospy.delete_param(name)
 
     @staticmethod
     def wait_until(condition, timeout, what):
