@@ -1,0 +1,1 @@
+"""Keyboard teleop with the TurtleBot3 layout (stand-in for ROBOTIS' turtlebot3_teleop)."""

@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""The TurtleBot3 keyboard teleop typed into through a pty, as a student would use it."""
+import subprocess
+import threading
+import time
+import unittest
+
+import rosgraph
+import rospy
+import rostest
+from geometry_msgs.msg import Twist
+
+from course_common.testing import PtyProgram, wait_until
+
+NODE = '/turtlebot3_teleop_keyboard'
+
+
+def node_names():
+    publishers, subscribers, services = rosgraph.Master('/test_teleop_key').getSystemState()
+    return {node for _, nodes in publishers + subscribers + services for node in nodes}
+
+
+class TeleopKeyTest(unittest.TestCase):
+
+    def setUp(self):
+        self.lock = threading.Lock()
+        self.received = []  # (wall time, linear, angular)
+        self.subscriber = rospy.Subscriber('cmd_vel', Twist, self.on_cmd_vel)
+        self.teleop = None
+
+    def tearDown(self):
+        self.subscriber.unregister()
+        if self.teleop is not None:
+            self.teleop.stop()
+
+    def on_cmd_vel(self, message):
+        with self.lock:
+            self.received.append((time.monotonic(), message.linear.x, message.angular.z))
+
+    def messages(self):
+        with self.lock:
+            return list(self.received)
+
+    def launch(self, model):
+        self.teleop = PtyProgram(['roslaunch', 'turtlebot3_teleop', 'turtlebot3_teleop_key.launch',
+                                  'model:=' + model])
+        self.teleop.wait_for_output('CTRL-C to quit', timeout=30)
+        wait_until(self.messages, timeout=10, what='the first cmd_vel message')
+
+    def wait_for_command(self, linear, angular, timeout=10):
+        return wait_until(
+            lambda: any(abs(l - linear) < 1e-6 and abs(a - angular) < 1e-6
+                        for _, l, a in self.messages()),
+            timeout, what='cmd_vel linear %.3f angular %.3f' % (linear, angular))
+
+    def test_keys_ramp_cmd_vel_and_ctrl_c_stops_the_robot(self):
+        self.launch('waffle')
+        self.assertIn('Control Your TurtleBot3!', self.teleop.output)
+        self.assertIn('0.26 m/s', self.teleop.output)
+        self.assertIn('1.82 rad/s', self.teleop.output)
+
+        # about every 0.1 s, counted over a window while nothing is typed
+        start_count, start = len(self.messages()), time.monotonic()
+        wait_until(lambda: time.monotonic() - start >= 2.0, timeout=5, what='a 2 s window')
+        rate = (len(self.messages()) - start_count) / (time.monotonic() - start)
+        self.assertGreater(rate, 7.0)
+        self.assertLess(rate, 13.0)
+
+        self.teleop.type('wwww')
+        self.teleop.wait_for_output('linear vel 0.04\t angular vel 0.00', timeout=10)
+        self.teleop.type('aa')
+        self.teleop.wait_for_output('linear vel 0.04\t angular vel 0.20', timeout=10)
+        self.wait_for_command(0.04, 0.2)
+        linears = [l for _, l, _ in self.messages()]
+        angulars = [a for _, _, a in self.messages()]
+        # the ramp: no jump bigger than 0.005 m/s or 0.05 rad/s between consecutive messages
+        self.assertLessEqual(max(abs(b - a) for a, b in zip(linears, linears[1:])), 0.005 + 1e-9)
+        self.assertLessEqual(max(abs(b - a) for a, b in zip(angulars, angulars[1:])), 0.05 + 1e-9)
+        self.assertIn(0.02, [round(l, 4) for l in linears])  # passed through the intermediate steps
+
+        self.teleop.type('s')
+        self.teleop.wait_for_output('linear vel 0.00\t angular vel 0.00', timeout=10)
+        self.wait_for_command(0.0, 0.0)
+
+        self.teleop.type('wwwwwwd')
+        self.wait_for_command(0.03, -0.1)
+        self.teleop.type('\x03')
+        wait_until(lambda: NODE not in node_names(), timeout=10, what='the teleop node to exit')
+        _, last_linear, last_angular = self.messages()[-1]
+        self.assertEqual((last_linear, last_angular), (0.0, 0.0))
+        self.assertNotIn('Traceback', self.teleop.output)
+
+    def test_banner_again_after_20_keys_and_unknown_model_uses_burger_limits(self):
+        self.launch('rover')
+        self.assertIn('Unknown TurtleBot3 model "rover"', self.teleop.output)
+        self.assertIn('0.22 m/s', self.teleop.output)
+        self.teleop.type('w' * 30)
+        self.teleop.wait_for_output('linear vel 0.22\t angular vel 0.00', timeout=10)
+        self.assertEqual(self.teleop.output.count('Control Your TurtleBot3!'), 2)
+        self.assertNotIn('linear vel 0.23', self.teleop.output)
+
+    def test_without_a_terminal_it_says_so_and_exits(self):
+        result = subprocess.run(['rosrun', 'turtlebot3_teleop', 'turtlebot3_teleop_key'],
+                                stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=60)
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn('standard input is not a terminal', result.stderr)
+        self.assertNotIn('Traceback', result.stderr + result.stdout)
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_teleop_key')
+    rostest.rosrun('turtlebot3_teleop', 'teleop_key', TeleopKeyTest)

@@ -1,0 +1,56 @@
+"""The LDS-01 laser of the TurtleBot3 as Gazebo simulates it."""
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from fake_tb3.geometry import cast_rays
+
+
+@dataclass(frozen=True)
+class LaserSpec:
+    """Geometry of the scan. Beam i points at angle_min + i * angle_increment in base_scan."""
+    samples: int = 360
+    angle_min: float = 0.0
+    angle_max: float = 6.28319  # so the last beam overlaps the first, as in Gazebo
+    range_min: float = 0.12
+    range_max: float = 3.5
+
+    @property
+    def angle_increment(self):
+        return (self.angle_max - self.angle_min) / (self.samples - 1)
+
+    @property
+    def beam_angles(self):
+        return self.angle_min + self.angle_increment * np.arange(self.samples)
+
+
+LDS_01 = LaserSpec()
+
+
+class Laser:
+    """Produces scans: the distance to the first surface in [range_min, range_max] along each
+    beam, plus Gaussian noise on the values in range (then clamped to the range); +inf where
+    nothing is hit.
+
+    noise_stddev 0 gives exact distances; seed makes the noise repeatable (None: random).
+    """
+
+    def __init__(self, spec=LDS_01, noise_stddev=0.01, seed=None):
+        if not (noise_stddev >= 0 and math.isfinite(noise_stddev)):
+            raise ValueError('noise stddev must be a finite number >= 0, got %r' % (noise_stddev,))
+        self.spec = spec
+        self.noise_stddev = noise_stddev
+        self._random = np.random.default_rng(seed)
+        self._beam_angles = spec.beam_angles
+
+    def scan(self, x, y, yaw, segments, circles):
+        """Ranges (float array of spec.samples) of a laser at (x, y) heading yaw."""
+        spec = self.spec
+        ranges = cast_rays(x, y, self._beam_angles + yaw, spec.range_min, spec.range_max,
+                           segments, circles)
+        if self.noise_stddev > 0:
+            hit = np.isfinite(ranges)
+            noisy = ranges[hit] + self._random.normal(0.0, self.noise_stddev, int(hit.sum()))
+            ranges[hit] = np.clip(noisy, spec.range_min, spec.range_max)
+        return ranges

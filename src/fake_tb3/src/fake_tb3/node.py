@@ -1,0 +1,358 @@
+"""The ROS layer of fake_tb3: parameters and messages around the pure simulator core.
+
+One process simulates the world and every robot in it (so robots can see and hit each other and
+share one /clock). One robot by default, with its topics in the node's namespace and frames
+without prefix, as Gazebo's TurtleBot3; with the private parameter `robots` (a list of
+{name, model, x_pos, y_pos, yaw}) each robot gets its topics under `<name>/` and frames
+prefixed `<name>/`, as multi_turtlebot3 does.
+"""
+import math
+import os
+import sys
+import threading
+import time
+
+import rosgraph.names
+import rospkg
+import rospy.core
+import rospy
+import tf2_ros
+from geometry_msgs.msg import Quaternion, TransformStamped, Twist
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import Imu, JointState, LaserScan
+from std_msgs.msg import UInt32
+from std_srvs.srv import Trigger, TriggerResponse
+
+from fake_tb3.lidar import Laser
+from fake_tb3.models import UnknownModelError, get_model
+from fake_tb3.render import save_picture
+from fake_tb3.simulation import SimRobot, Simulation
+from fake_tb3.timing import Periodic
+from fake_tb3.world import WorldError, load_world
+
+# Pose and twist covariance of Gazebo's diff drive: x, y, z, roll, pitch, yaw.
+ODOM_COVARIANCE_DIAGONAL = (1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3)
+GRAVITY = 9.80665
+# When the loop falls this far (wall seconds) behind its schedule it stops trying to catch up.
+MAX_LAG = 0.25
+
+
+class ConfigError(ValueError):
+    """A parameter the simulator cannot run with."""
+
+
+def _quaternion(yaw):
+    return Quaternion(0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
+
+
+def _diagonal(values):
+    matrix = [0.0] * (len(values) ** 2)
+    for index, value in enumerate(values):
+        matrix[index * (len(values) + 1)] = value
+    return matrix
+
+
+def _number(value, name, minimum=None):
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ConfigError('parameter %s must be a number, got %r' % (name, value)) from None
+    if not math.isfinite(number) or (minimum is not None and number < minimum):
+        raise ConfigError('parameter %s must be a finite number%s, got %r'
+                          % (name, '' if minimum is None else ' >= %g' % minimum, value))
+    return number
+
+
+class RobotInterface:
+    """Topics and frames of one robot: cmd_vel in; odom, TF, joint_states, imu, scan and
+    collisions out."""
+
+    def __init__(self, node, robot, prefix):
+        self.node = node
+        self.robot = robot
+        self.prefix = prefix
+        self.label = robot.name or 'robot'
+        self.last_command_ns = 0
+        self.timed_out = False
+        self.odom = rospy.Publisher(prefix + 'odom', Odometry, queue_size=10)
+        self.joint_states = rospy.Publisher(prefix + 'joint_states', JointState, queue_size=10)
+        self.imu = rospy.Publisher(prefix + 'imu', Imu, queue_size=10)
+        self.scan = rospy.Publisher(prefix + 'scan', LaserScan, queue_size=5)
+        self.collisions = rospy.Publisher(prefix + 'collisions', UInt32, queue_size=1, latch=True)
+        self.collisions.publish(UInt32(0))
+        self.previous_linear = 0.0
+        self._build_messages()
+        rospy.Subscriber(prefix + 'cmd_vel', Twist, self.on_cmd_vel, queue_size=10)
+
+    def frame(self, name):
+        return self.prefix + name
+
+    def on_cmd_vel(self, twist):
+        linear, angular = twist.linear.x, twist.angular.z
+        if not (math.isfinite(linear) and math.isfinite(angular)):
+            rospy.logwarn('%s: ignoring cmd_vel with a non-finite velocity '
+                          '(linear.x %s, angular.z %s)', self.label, linear, angular)
+            return
+        if self.node.clamp_speed:
+            model = self.robot.model
+            linear = max(-model.max_linear, min(model.max_linear, linear))
+            angular = max(-model.max_angular, min(model.max_angular, angular))
+        self.robot.command = (linear, angular)
+        self.last_command_ns = self.node.sim_ns
+        self.timed_out = False
+
+    def check_timeout(self, now_ns, timeout):
+        """Stop the robot when no command came for `timeout` seconds (0: never)."""
+        if timeout > 0 and not self.timed_out and now_ns - self.last_command_ns > timeout * 1e9:
+            self.timed_out = True
+            if self.robot.command != (0.0, 0.0):
+                self.robot.command = (0.0, 0.0)
+                rospy.loginfo('%s: no cmd_vel for %.2f s, stopping', self.label, timeout)
+
+    def report_collision(self):
+        robot = self.robot
+        rospy.logwarn('%s: collision at x %.3f y %.3f yaw %.3f: the body touches an obstacle '
+                      '(collision %d)', self.label, robot.x, robot.y, robot.yaw, robot.collisions)
+        self.collisions.publish(UInt32(robot.collisions))
+
+    def _build_messages(self):
+        """The messages this robot publishes, with what never changes filled in once: rospy
+        serialises a message inside publish(), so each tick only updates the changing fields."""
+        spec = self.robot.laser.spec
+        self.odom_message = Odometry()
+        self.odom_message.header.frame_id = self.frame('odom')
+        self.odom_message.child_frame_id = self.frame('base_footprint')
+        self.odom_message.pose.covariance = _diagonal(ODOM_COVARIANCE_DIAGONAL)
+        self.odom_message.twist.covariance = _diagonal(ODOM_COVARIANCE_DIAGONAL)
+        self.transform = TransformStamped()
+        self.transform.header.frame_id = self.frame('odom')
+        self.transform.child_frame_id = self.frame('base_footprint')
+        self.joints_message = JointState(name=['wheel_left_joint', 'wheel_right_joint'],
+                                         effort=[0.0, 0.0])
+        self.imu_message = Imu()
+        self.imu_message.header.frame_id = self.frame('imu_link')
+        self.imu_message.linear_acceleration.z = GRAVITY
+        self.imu_message.orientation_covariance = _diagonal((1e-6, 1e-6, 1e-6))
+        self.imu_message.angular_velocity_covariance = _diagonal((1e-6, 1e-6, 1e-6))
+        self.imu_message.linear_acceleration_covariance = _diagonal((1e-6, 1e-6, 1e-6))
+        self.scan_message = LaserScan(angle_min=spec.angle_min, angle_max=spec.angle_max,
+                                      angle_increment=spec.angle_increment,
+                                      range_min=spec.range_min, range_max=spec.range_max,
+                                      intensities=[0.0] * spec.samples)
+        self.scan_message.header.frame_id = self.frame('base_scan')
+
+    def publish_odometry(self, stamp, broadcaster):
+        robot = self.robot
+        orientation = _quaternion(robot.yaw)
+        odom = self.odom_message
+        odom.header.stamp = stamp
+        odom.pose.pose.position.x, odom.pose.pose.position.y = robot.x, robot.y
+        odom.pose.pose.orientation = orientation
+        odom.twist.twist.linear.x, odom.twist.twist.angular.z = robot.velocity
+        self.odom.publish(odom)
+        transform = self.transform
+        transform.header.stamp = stamp
+        transform.transform.translation.x, transform.transform.translation.y = robot.x, robot.y
+        transform.transform.rotation = orientation
+        broadcaster.sendTransform(transform)
+
+    def publish_joint_states(self, stamp):
+        robot = self.robot
+        linear, angular = robot.velocity
+        half_track = angular * robot.model.wheel_separation / 2
+        message = self.joints_message
+        message.header.stamp = stamp
+        message.position = list(robot.wheel_angles)
+        message.velocity = [(linear - half_track) / robot.model.wheel_radius,
+                            (linear + half_track) / robot.model.wheel_radius]
+        self.joint_states.publish(message)
+
+    def publish_imu(self, stamp, dt):
+        linear, angular = self.robot.velocity
+        message = self.imu_message
+        message.header.stamp = stamp
+        message.orientation = _quaternion(self.robot.yaw)
+        message.angular_velocity.z = angular
+        message.linear_acceleration.x = (linear - self.previous_linear) / dt
+        message.linear_acceleration.y = linear * angular  # centripetal
+        self.previous_linear = linear
+        self.imu.publish(message)
+
+    def publish_scan(self, stamp, simulation):
+        message = self.scan_message
+        message.header.stamp = stamp
+        message.ranges = simulation.scan(self.robot).tolist()
+        self.scan.publish(message)
+
+
+class FakeTb3Node:
+    """Runs the simulation loop: steps physics and publishes every topic at its simulated rate."""
+
+    def __init__(self):
+        self.sim_ns = 0
+        self.lock = threading.Lock()
+        self.use_sim_time = bool(rospy.get_param('/use_sim_time', False))
+        self.real_time_factor = _number(rospy.get_param('~real_time_factor', 1.0),
+                                        'real_time_factor')
+        if self.real_time_factor <= 0:
+            raise ConfigError('parameter real_time_factor must be positive, got %r'
+                              % self.real_time_factor)
+        self.clamp_speed = bool(rospy.get_param('~clamp_speed', False))
+        self.cmd_vel_timeout = _number(rospy.get_param('~cmd_vel_timeout', 0.0), 'cmd_vel_timeout',
+                                       0)
+        worlds_dir = os.path.join(rospkg.RosPack().get_path('fake_tb3'), 'worlds')
+        world = load_world(rospy.get_param('~world', 'empty'), worlds_dir)
+        robots = [self._make_robot(index, spec) for index, spec in enumerate(self._robot_specs())]
+        self.simulation = Simulation(world, robots,
+                                     bool(rospy.get_param('~robots_see_each_other', True)))
+        for robot in robots:
+            if self.simulation.overlapping(robot):
+                rospy.logerr('%s: spawned at x %.3f y %.3f overlapping an obstacle of world %s: '
+                             'it cannot move until placed elsewhere', robot.name or 'robot',
+                             robot.x, robot.y, world.name)
+        self.physics = Periodic(rospy.get_param('~physics_rate', 100.0), 'physics_rate')
+        self.imu_periodic = Periodic(rospy.get_param('~imu_rate', 30.0), 'imu_rate')
+        self.schedules = [
+            (self.physics, self._step_physics),
+            (Periodic(rospy.get_param('~odom_rate', 30.0), 'odom_rate'), self._publish_odometry),
+            (Periodic(rospy.get_param('~joint_states_rate', 30.0), 'joint_states_rate'),
+             self._publish_joint_states),
+            (self.imu_periodic, self._publish_imu),
+            (Periodic(rospy.get_param('~scan_rate', 5.0), 'scan_rate'), self._publish_scans),
+        ]
+        self.picture_at_shutdown = rospy.get_param('~picture_png', '')
+        self.broadcaster = tf2_ros.TransformBroadcaster()
+        self.clock = rospy.Publisher('/clock', Clock, queue_size=10) if self.use_sim_time else None
+        multi = len(robots) > 1 or rospy.has_param('~robots')
+        self.interfaces = [RobotInterface(self, robot, robot.name + '/' if multi else '')
+                           for robot in robots]
+        rospy.Service('~save_picture', Trigger, self._on_save_picture)
+        spawns = ', '.join('%s %s at (%.2f, %.2f, yaw %.2f)' % (r.name or 'robot', r.model.name,
+                                                                 r.x, r.y, r.yaw) for r in robots)
+        rospy.loginfo('fake_tb3: world %s, %s, %s time x%g', world.name, spawns,
+                      'simulated' if self.use_sim_time else 'real', self.real_time_factor)
+
+    def _robot_specs(self):
+        if rospy.has_param('~robots'):
+            specs = rospy.get_param('~robots')
+            if not (isinstance(specs, list) and specs
+                    and all(isinstance(spec, dict) for spec in specs)):
+                raise ConfigError('parameter robots must be a non-empty list of mappings '
+                                  '{name, model, x_pos, y_pos, yaw}, got %r' % (specs,))
+            names = [spec.get('name') for spec in specs]
+            for name in names:
+                # The name becomes a namespace and a frame prefix: a plain relative ROS name.
+                if not (isinstance(name, str) and name and rosgraph.names.is_legal_base_name(name)):
+                    raise ConfigError('every robot needs a name made of letters, digits and _ '
+                                      '(starting with a letter), got %r' % (name,))
+            if len(set(names)) < len(names):
+                raise ConfigError('robot names must differ, got %s' % ', '.join(names))
+            return specs
+        return [{'name': '', 'model': rospy.get_param('~model', os.environ.get('TURTLEBOT3_MODEL')
+                                                      or 'burger'),
+                 'x_pos': rospy.get_param('~x_pos', 0.0), 'y_pos': rospy.get_param('~y_pos', 0.0),
+                 'yaw': rospy.get_param('~yaw', 0.0)}]
+
+    @staticmethod
+    def _make_robot(index, spec):
+        name = str(spec.get('name', ''))
+        noise = _number(rospy.get_param('~noise_stddev', 0.01), 'noise_stddev', 0)
+        seed = int(_number(rospy.get_param('~noise_seed', -1), 'noise_seed'))
+        laser = Laser(noise_stddev=noise, seed=None if seed < 0 else seed + index)
+        model = get_model(spec.get('model', os.environ.get('TURTLEBOT3_MODEL') or 'burger'))
+        return SimRobot(name, model, _number(spec.get('x_pos', 0.0), 'x_pos'),
+                        _number(spec.get('y_pos', 0.0), 'y_pos'),
+                        _number(spec.get('yaw', 0.0), 'yaw'), laser)
+
+    # --- what happens at each tick -------------------------------------------------------------
+    def _step_physics(self, stamp):
+        for interface in self.interfaces:
+            interface.check_timeout(self.sim_ns, self.cmd_vel_timeout)
+        began = self.simulation.step(1.0 / self.physics.rate)
+        for interface in self.interfaces:
+            if interface.robot in began:
+                interface.report_collision()
+        if self.clock:
+            self.clock.publish(Clock(stamp))
+
+    def _publish_odometry(self, stamp):
+        for interface in self.interfaces:
+            interface.publish_odometry(stamp, self.broadcaster)
+
+    def _publish_joint_states(self, stamp):
+        for interface in self.interfaces:
+            interface.publish_joint_states(stamp)
+
+    def _publish_imu(self, stamp):
+        for interface in self.interfaces:
+            interface.publish_imu(stamp, 1.0 / self.imu_periodic.rate)
+
+    def _publish_scans(self, stamp):
+        for interface in self.interfaces:
+            interface.publish_scan(stamp, self.simulation)
+
+    # --- pictures ------------------------------------------------------------------------------
+    def picture_path(self):
+        return rospy.get_param('~picture_png', '') or os.path.join(rospkg.get_ros_home(),
+                                                                   'fake_tb3.png')
+
+    def write_picture(self, path):
+        with self.lock:
+            save_picture(self.simulation, path)
+
+    def _on_save_picture(self, _request):
+        path = os.path.abspath(os.path.expanduser(str(self.picture_path())))
+        try:
+            self.write_picture(path)
+        except (OSError, ValueError) as err:
+            rospy.logerr('fake_tb3: cannot write the picture %s: %s', path, err)
+            return TriggerResponse(success=False, message='cannot write %s: %s' % (path, err))
+        return TriggerResponse(success=True, message=path)
+
+    # --- the loop ------------------------------------------------------------------------------
+    def spin(self):
+        """Step and publish until shutdown; simulated time runs real_time_factor x wall time."""
+        anchor_wall, anchor_ns = time.monotonic(), 0
+        while not rospy.is_shutdown():
+            next_ns = min(periodic.next_ns for periodic, _ in self.schedules)
+            due = anchor_wall + (next_ns - anchor_ns) / 1e9 / self.real_time_factor
+            now = time.monotonic()
+            while now < due and not rospy.is_shutdown():
+                time.sleep(min(due - now, 0.05))
+                now = time.monotonic()
+            if now - due > MAX_LAG:  # cannot keep up: carry on from here rather than rush
+                anchor_wall, anchor_ns = now, next_ns
+            # Simulated time starts at 0, as Gazebo's; real time stamps are the wall clock.
+            stamp = rospy.Time(0, next_ns) if self.use_sim_time else rospy.Time.now()
+            with self.lock:
+                self.sim_ns = next_ns
+                try:
+                    for periodic, action in self.schedules:
+                        if periodic.next_ns == next_ns:
+                            action(stamp)
+                            periodic.advance()
+                except rospy.ROSException:
+                    if rospy.core.is_shutdown_requested():  # publishers close early in shutdown
+                        return
+                    raise
+
+    def shutdown_picture(self):
+        if self.picture_at_shutdown:
+            path = os.path.abspath(os.path.expanduser(str(self.picture_at_shutdown)))
+            try:
+                self.write_picture(path)
+                print('fake_tb3: picture written to %s' % path)
+            except (OSError, ValueError) as err:
+                print('fake_tb3: cannot write the picture %s: %s' % (path, err), file=sys.stderr)
+
+
+def main():
+    rospy.init_node('fake_tb3')
+    try:
+        node = FakeTb3Node()
+    except (ConfigError, UnknownModelError, WorldError, ValueError) as err:
+        rospy.logfatal('fake_tb3: %s', err)
+        sys.exit(1)
+    node.spin()
+    node.shutdown_picture()

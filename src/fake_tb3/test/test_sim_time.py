@@ -1,0 +1,139 @@
+#!/usr/bin/env python3
+"""rostest: fake_tb3 on simulated time at 10x in the wall_ahead world: /clock, rates in simulated
+time, exact ranges, a collision, bad input, pictures, bad parameters."""
+import math
+import os
+import subprocess
+import tempfile
+import time
+import unittest
+
+import numpy as np
+import rospy
+import rostest
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+from PIL import Image
+from rosgraph_msgs.msg import Clock, Log
+from sensor_msgs.msg import JointState, LaserScan
+from std_msgs.msg import UInt32
+from std_srvs.srv import Trigger
+
+from course_common.testing import wait_until
+from rostest_helpers import Recorder, rosout_lines
+
+REAL_TIME_FACTOR = 10.0
+# The body's front is 0.038 m ahead of base_footprint (burger box 0.14 m centred at -0.032).
+FRONT = 0.038
+
+
+class SimTimeTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('sim_time_test')
+        cls.clock = Recorder('/clock', Clock)
+        cls.odom = Recorder('/odom', Odometry)
+        cls.joint_states = Recorder('/joint_states', JointState)
+        cls.scan = Recorder('/scan', LaserScan)
+        cls.collisions = Recorder('/collisions', UInt32)
+        cls.rosout = Recorder('/rosout', Log)
+        cls.cmd_vel = rospy.Publisher('/cmd_vel', Twist, queue_size=1)
+        wait_until(lambda: cls.scan.latest() and cls.odom.latest() and cls.collisions.latest(), 30,
+                   'scan, odom and collisions')
+        wait_until(lambda: cls.cmd_vel.get_num_connections(), 10, 'fake_tb3 on /cmd_vel')
+
+    def drive(self, linear, angular=0.0):
+        twist = Twist()
+        twist.linear.x, twist.angular.z = linear, angular
+        self.cmd_vel.publish(twist)
+
+    def test_01_scan_sees_the_wall_exactly(self):
+        # Laser 0.032 m behind base_footprint at the origin, wall face at x = 2.0.
+        scan = self.scan.latest()
+        self.assertAlmostEqual(scan.ranges[0], 2.032, places=5)
+        self.assertAlmostEqual(scan.ranges[30], 2.032 / math.cos(30 * scan.angle_increment),
+                               places=4)
+        self.assertEqual(scan.ranges[180], math.inf)
+
+    def test_02_clock_runs_at_the_real_time_factor(self):
+        start_wall = time.monotonic()
+        start_clock = self.clock.latest().clock
+        wait_until(lambda: time.monotonic() - start_wall > 4.0, 10, '4 s of wall time')
+        simulated = (self.clock.latest().clock - start_clock).to_sec()
+        factor = simulated / (time.monotonic() - start_wall)
+        self.assertAlmostEqual(factor, REAL_TIME_FACTOR, delta=0.15 * REAL_TIME_FACTOR)
+
+    def test_03_rates_in_simulated_time(self):
+        start = self.clock.latest().clock + rospy.Duration(1)
+        end = start + rospy.Duration(10)
+        wait_until(lambda: self.odom.latest().header.stamp > end + rospy.Duration(0.5), 30,
+                   '11.5 simulated seconds')
+        self.assertAlmostEqual(self.scan.stamp_rate(start, end), 5.0, delta=0.1)
+        self.assertAlmostEqual(self.odom.stamp_rate(start, end), 30.0, delta=0.3)
+        self.assertAlmostEqual(self.joint_states.stamp_rate(start, end), 30.0, delta=0.3)
+
+    def test_04_drives_into_the_wall_and_stops_at_the_contact(self):
+        self.drive(1.0)
+        wait_until(lambda: self.collisions.latest().data == 1, 30, 'a collision')
+        wait_until(lambda: self.odom.latest().twist.twist.linear.x == 0.0, 5, 'the robot stopped')
+        self.assertAlmostEqual(self.odom.latest().pose.pose.position.x, 2.0 - FRONT, delta=0.001)
+        warnings = wait_until(lambda: rosout_lines(self.rosout, 'collision at x 1.96'), 5,
+                              'the collision warning')
+        self.assertIn('the body touches an obstacle (collision 1)', warnings[0])
+        # Pushing on is the same contact: no new collision, no motion.
+        stamp = self.odom.latest().header.stamp
+        wait_until(lambda: self.odom.latest().header.stamp > stamp + rospy.Duration(2), 10, '2 s')
+        self.assertEqual(self.collisions.latest().data, 1)
+        self.assertAlmostEqual(self.odom.latest().pose.pose.position.x, 2.0 - FRONT, delta=0.001)
+        # The scan from there: the wall 0.07 m ahead of the laser is inside range_min: not seen.
+        wait_until(lambda: self.scan.latest().header.stamp > stamp + rospy.Duration(2), 10,
+                   'a scan')
+        self.assertEqual(self.scan.latest().ranges[0], math.inf)
+
+    def test_05_non_finite_commands_are_refused_and_the_last_one_holds(self):
+        self.drive(-0.5)
+        wait_until(lambda: self.odom.latest().twist.twist.linear.x == -0.5, 10, 'backing off')
+        self.drive(float('nan'))
+        self.drive(0.1, float('inf'))
+        wait_until(lambda: rosout_lines(self.rosout, 'non-finite velocity'), 10, 'a warning')
+        self.assertEqual(self.odom.latest().twist.twist.linear.x, -0.5)
+        self.drive(0.0)
+
+    def test_06_save_picture(self):
+        folder = tempfile.mkdtemp()
+        path = os.path.join(folder, 'top.png')
+        rospy.set_param('/fake_tb3/picture_png', path)
+        save = rospy.ServiceProxy('/fake_tb3/save_picture', Trigger)
+        save.wait_for_service(10)
+        reply = save()
+        self.assertTrue(reply.success)
+        self.assertEqual(reply.message, path)
+        image = np.asarray(Image.open(path).convert('RGB'))
+        red = np.all(image == (230, 20, 20), axis=2).sum()
+        self.assertGreater(red, 50)  # the scan's dots on the wall
+        rospy.set_param('/fake_tb3/picture_png', os.path.join(folder, 'missing', 'top.png'))
+        reply = save()
+        self.assertFalse(reply.success)
+        self.assertIn('cannot write', reply.message)
+
+    def test_07_bad_parameters_are_clear_errors(self):
+        cases = [(['_model:=burgr'], "unknown TurtleBot3 model 'burgr'"),
+                 (['_world:=moon'], "no world 'moon'"),
+                 (['_real_time_factor:=-2'], 'real_time_factor must be positive'),
+                 (['_x_pos:=left'], 'parameter x_pos must be a number'),
+                 (['_noise_stddev:=-1'], 'parameter noise_stddev must be a finite number >= 0'),
+                 (['_robots:=[3]'], 'parameter robots must be a non-empty list of mappings'),
+                 (['_robots:=[{name: a}, {name: a}]'], 'robot names must differ, got a, a'),
+                 (['_robots:=[{name: tb3/0}]'], "every robot needs a name made of letters")]
+        for index, (arguments, message) in enumerate(cases):
+            # A node name per case: private parameters set by `_name:=` stay on the server.
+            name = '__name:=bad_fake_tb3_%d' % index
+            run = subprocess.run(['rosrun', 'fake_tb3', 'fake_tb3_node', name]
+                                 + arguments, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                 timeout=60, universal_newlines=True)
+            self.assertEqual(run.returncode, 1, run.stdout)
+            self.assertIn(message, run.stdout)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('fake_tb3', 'sim_time', SimTimeTest)

@@ -1,0 +1,207 @@
+"""Test helpers: run this package's launch files (as a student would, with roslaunch) against the
+test's master, and watch the simulated robot through fake_tb3's topics."""
+import math
+import os
+import signal
+import subprocess
+import threading
+import unittest
+
+import rosgraph
+import rospy
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import LaserScan
+from std_msgs.msg import UInt32
+
+from course_common.testing import wait_until
+
+
+def node_names():
+    publishers, subscribers, services = rosgraph.Master(rospy.get_name()).getSystemState()
+    return {node for _, nodes in publishers + subscribers + services for node in nodes}
+
+
+class Launch:
+    """roslaunch of one of this package's launch files (or a lone node), output collected."""
+
+    def __init__(self, *argv):
+        # Unbuffered, so that what the nodes print reaches us line by line, as in a terminal.
+        env = dict(os.environ, PYTHONUNBUFFERED='1')
+        self.process = subprocess.Popen(list(argv), stdout=subprocess.PIPE,
+                                        stderr=subprocess.STDOUT, env=env, text=True,
+                                        start_new_session=True)
+        self._lines = []
+        self._lock = threading.Lock()
+        self._reader = threading.Thread(target=self._read, daemon=True)
+        self._reader.start()
+
+    @classmethod
+    def package_file(cls, launch_file, **args):
+        return cls('roslaunch', 'move_turtlebot3', launch_file,
+                   *['%s:=%s' % item for item in sorted(args.items())])
+
+    def _read(self):
+        for line in self.process.stdout:
+            with self._lock:
+                self._lines.append(line.rstrip('\n'))
+
+    @property
+    def lines(self):
+        with self._lock:
+            return list(self._lines)
+
+    @property
+    def output(self):
+        return '\n'.join(self.lines)
+
+    def wait_for_output(self, text, timeout):
+        return wait_until(lambda: text in self.output, timeout, what='%r in the output' % text)
+
+    def stop(self):
+        """Ctrl-C, as in the terminal; roslaunch stops its nodes. Kill only if it hangs."""
+        if self.process.poll() is None:
+            os.killpg(self.process.pid, signal.SIGINT)
+            try:
+                self.process.wait(30)
+            except subprocess.TimeoutExpired:
+                os.killpg(self.process.pid, signal.SIGKILL)
+                self.process.wait()
+        self._reader.join(5)
+
+
+class RobotWatch:
+    """Everything the tests look at: odometry (world pose, sim time), scans, collisions, commands."""
+
+    def __init__(self, cmd_vel='/cmd_vel'):
+        self._lock = threading.Lock()
+        self.reset()
+        self._subscribers = [
+            rospy.Subscriber('/odom', Odometry, self._on_odom),
+            rospy.Subscriber('/scan', LaserScan, self._on_scan),
+            rospy.Subscriber('/collisions', UInt32, self._on_collisions),
+            rospy.Subscriber(cmd_vel, Twist, self._on_cmd_vel),
+            rospy.Subscriber('/clock', Clock, self._on_clock),
+        ]
+
+    def reset(self):
+        """Forget everything: call between two runs of the simulator."""
+        with self._lock:
+            self.poses = []        # (sim time s, x, y, yaw)
+            self.scans = []
+            self.commands = []     # (sim time s or None, linear, angular)
+            self.collisions = None
+            self.sim_time = None
+
+    def close(self):
+        for subscriber in self._subscribers:
+            subscriber.unregister()
+
+    def _on_odom(self, message):
+        orientation = message.pose.pose.orientation
+        yaw = 2 * math.atan2(orientation.z, orientation.w)
+        with self._lock:
+            self.poses.append((message.header.stamp.to_sec(), message.pose.pose.position.x,
+                               message.pose.pose.position.y, yaw))
+
+    def _on_scan(self, message):
+        with self._lock:
+            self.scans.append(message)
+
+    def _on_collisions(self, message):
+        with self._lock:
+            self.collisions = message.data
+
+    def _on_cmd_vel(self, message):
+        with self._lock:
+            self.commands.append((self.sim_time, message.linear.x, message.angular.z))
+
+    def _on_clock(self, message):
+        with self._lock:
+            self.sim_time = message.clock.to_sec()
+
+    def copy(self, name):
+        with self._lock:
+            return list(getattr(self, name))
+
+    def wait_until_running(self, timeout=60):
+        """Until the simulator publishes odometry and scans and tells its collision count."""
+        wait_until(lambda: self.copy('poses') and self.copy('scans') and self.collisions is not None,
+                   timeout, what='odom, scan and collisions from fake_tb3')
+
+    def now(self):
+        """Simulated time of the latest odometry."""
+        return self.copy('poses')[-1][0]
+
+    def wait_sim_seconds(self, seconds, timeout):
+        end = self.now() + seconds
+        wait_until(lambda: self.now() >= end, timeout, what='%.0f simulated seconds' % seconds)
+
+    def poses_since(self, start):
+        return [pose for pose in self.copy('poses') if pose[0] >= start]
+
+    def front_range(self):
+        return self.copy('scans')[-1].ranges[0]
+
+
+def path_length(poses):
+    return sum(math.hypot(b[1] - a[1], b[2] - a[2]) for a, b in zip(poses, poses[1:]))
+
+
+def largest_move(poses):
+    """How far the robot got from the first of these poses at most."""
+    return max(math.hypot(x - poses[0][1], y - poses[0][2]) for _, x, y, _ in poses)
+
+
+class LabTestCase(unittest.TestCase):
+    """A test case with a RobotWatch, and a Launch (self.launch) stopped at its end."""
+
+    def setUp(self):
+        self.watch = RobotWatch()
+        self.launch = None
+
+    def tearDown(self):
+        if self.launch is not None:
+            self.launch.stop()
+            # Kept in the test's log (and in the result file), to see what went on when it fails.
+            print('--- output of %s:\n%s' % (self._testMethodName, self.launch.output))
+        self.watch.close()
+
+
+class LoneNode:
+    """One of this package's scan nodes run alone, on scans and commands topics of the test's own."""
+
+    def __init__(self, script):
+        self.launch = Launch('rosrun', 'move_turtlebot3', script,
+                             '/scan:=/odd_scan', '/cmd_vel:=/odd_cmd_vel')
+        self._publisher = rospy.Publisher('/odd_scan', LaserScan, queue_size=1)
+        self.commands = []
+        self._listener = rospy.Subscriber('/odd_cmd_vel', Twist, self.commands.append)
+        wait_until(lambda: self._publisher.get_num_connections() > 0
+                   and self._listener.get_num_connections() > 0,
+                   timeout=30, what='%s to connect' % script)
+
+    def answer_to(self, scan):
+        """Publish one scan and return the (linear, angular) command the node answers with."""
+        count = len(self.commands)
+
+        def answered():
+            if len(self.commands) > count:
+                return True
+            # (Again after half a second: the node's first answers can leave before its publisher
+            # has taken in our fresh connection.)
+            self._publisher.publish(scan)
+            return False
+
+        wait_until(answered, timeout=10, what='an answer to a scan', poll=0.5)
+        return self.commands[-1].linear.x, self.commands[-1].angular.z
+
+    @property
+    def output(self):
+        return self.launch.output
+
+    def stop(self):
+        self._listener.unregister()
+        self._publisher.unregister()
+        self.launch.stop()

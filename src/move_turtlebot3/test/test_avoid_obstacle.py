@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""avoid_obstacle.py on fake_tb3: drives up to a wall, stops 0.35-0.5 m before it, stays there."""
+import math
+
+import rospy
+import rostest
+from sensor_msgs.msg import LaserScan
+
+from course_common.testing import wait_until
+from lab_sim import LabTestCase, Launch, LoneNode, largest_move, node_names
+
+# The wall of world wall_ahead has its face at x = 2.0; the laser sits 0.032 m behind the centre.
+WALL_X = 2.0
+LASER_BEHIND_CENTRE = 0.032
+
+
+class AvoidObstacleTest(LabTestCase):
+
+    def start(self, world, x_pos, noise, real_time_factor):
+        self.launch = Launch.package_file('avoid_obstacle.launch', world=world, x_pos=x_pos,
+                                          y_pos=0.0, noise_stddev=noise, noise_seed=7,
+                                          real_time_factor=real_time_factor)
+        self.watch.wait_until_running()
+        self.launch.wait_for_output('s2 [0]', timeout=60)
+
+    def stopped_for(self, seconds):
+        """The pose has not changed over the last `seconds` of simulated time."""
+        poses = self.watch.copy('poses')
+        recent = [p for p in poses if p[0] >= poses[-1][0] - seconds]
+        return recent[0][0] <= poses[-1][0] - seconds + 0.1 and largest_move(recent) < 1e-4
+
+    def drive_to_the_wall(self, noise):
+        # Low real-time factor: the node answers a scan within some wall-clock milliseconds, and
+        # every one of them lets the simulated robot drive on at 0.5 m/s.
+        self.start('wall_ahead', x_pos=-1.0, noise=noise, real_time_factor=2)
+        self.assertAlmostEqual(self.watch.copy('scans')[0].ranges[0],
+                               WALL_X - (-1.0 - LASER_BEHIND_CENTRE), delta=0.05)
+        wait_until(lambda: self.watch.copy('poses')[-1][1] > 0.0, timeout=30,
+                   what='the robot to drive toward the wall')
+        wait_until(lambda: self.stopped_for(1.0), timeout=60, what='the robot to stop')
+        first_stop = self.watch.copy('poses')[-1]
+        return first_stop
+
+    def assert_front_range_in_band(self):
+        x = self.watch.copy('poses')[-1][1]
+        print('%s: stopped %.3f m before the wall, the laser reads %.3f m' % (
+            self._testMethodName, WALL_X - (x - LASER_BEHIND_CENTRE), self.watch.front_range()))
+        self.assertGreaterEqual(WALL_X - (x - LASER_BEHIND_CENTRE), 0.35)
+        self.assertLessEqual(WALL_X - (x - LASER_BEHIND_CENTRE), 0.5)
+        self.assertGreaterEqual(self.watch.front_range(), 0.33)   # the same, as the laser sees it
+        self.assertLessEqual(self.watch.front_range(), 0.52)
+
+    def test_stops_before_a_wall_and_stays_without_noise(self):
+        first_stop = self.drive_to_the_wall(noise=0.0)
+        self.assert_front_range_in_band()
+        self.watch.wait_sim_seconds(5, timeout=30)
+        self.assertLess(largest_move(self.watch.poses_since(first_stop[0])), 1e-4)
+        self.assertEqual(self.watch.collisions, 0)
+
+    def test_stops_before_a_wall_and_stays_with_noise(self):
+        first_stop = self.drive_to_the_wall(noise=0.01)
+        self.watch.wait_sim_seconds(5, timeout=30)
+        # One threshold on a noisy beam: stopped just under 0.5 m, a later reading can come out
+        # above 0.5 and move the robot once more, by one scan period (0.2 s at 0.5 m/s). Then it
+        # is far enough under the threshold for good.
+        self.assertLess(largest_move(self.watch.poses_since(first_stop[0])), 0.11)
+        wait_until(lambda: self.stopped_for(3.0), timeout=30, what='the robot to stay stopped')
+        self.assert_front_range_in_band()
+        self.assertEqual(self.watch.collisions, 0)
+
+    def test_started_closer_than_half_a_metre_it_does_not_move(self):
+        self.start('wall_ahead', x_pos=1.65, noise=0.01, real_time_factor=5)
+        self.assertLess(self.watch.front_range(), 0.45)
+        start = self.watch.now()
+        self.watch.wait_sim_seconds(5, timeout=30)
+        self.assertLess(largest_move(self.watch.poses_since(start)), 1e-4)
+        commands = self.watch.copy('commands')
+        self.assertGreater(len(commands), 10)
+        self.assertEqual({(linear, angular) for _, linear, angular in commands}, {(0.0, 0.0)})
+        self.assertEqual(self.watch.collisions, 0)
+
+    def test_in_the_empty_world_it_keeps_going(self):
+        self.start('empty', x_pos=0.0, noise=0.01, real_time_factor=10)
+        self.watch.wait_sim_seconds(2, timeout=30)
+        start = self.watch.now()
+        self.watch.wait_sim_seconds(10, timeout=60)
+        poses = self.watch.poses_since(start)
+        self.assertAlmostEqual(poses[-1][1] - poses[0][1], 0.5 * (poses[-1][0] - poses[0][0]),
+                               delta=0.25)
+        self.assertLess(max(abs(y) for _, _, y, _ in poses), 1e-6)
+        self.assertEqual(self.watch.front_range(), math.inf)
+
+    def test_odd_scans_stop_the_robot_and_crash_nothing(self):
+        node = self.launch = LoneNode('avoid_obstacle.py')
+
+        def forward_speed(ranges):
+            return node.answer_to(LaserScan(ranges=ranges))[0]
+
+        self.assertEqual(forward_speed([math.inf] * 360), 0.5)    # nothing within range: go
+        self.assertEqual(forward_speed([math.nan] * 360), 0.0)    # no valid reading: stop
+        self.assertEqual(forward_speed([1.0] * 360), 0.5)
+        self.assertEqual(forward_speed([-math.inf] * 360), 0.0)   # too close to measure: stop
+        self.assertEqual(forward_speed([2.0] * 100), 0.5)         # short scan, front beam there
+        self.assertIn('s1 [270]\nNone', node.launch.output)
+        self.assertEqual(forward_speed([]), 0.0)                  # no beams at all: stop
+        self.assertEqual(forward_speed([0.3] * 360), 0.0)
+        self.assertNotIn('Traceback', node.launch.output)
+        self.assertIn('/obstacle_avoidance', node_names())
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_avoid_obstacle')
+    rostest.rosrun('move_turtlebot3', 'test_avoid_obstacle', AvoidObstacleTest)
