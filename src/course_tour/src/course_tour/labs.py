@@ -6,6 +6,10 @@ import re
 import time
 
 import rospy
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import LaserScan
+from std_msgs.msg import UInt32
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill
 
@@ -118,9 +122,73 @@ def report_shapes(session):
     return LabReport(lines, pictures)
 
 
+def _odom_points(recorder):
+    return [(odom.pose.pose.position.x, odom.pose.pose.position.y) for odom in recorder.snapshot()]
+
+
+def _collisions(recorder):
+    counts = recorder.snapshot()
+    return counts[-1].data if counts else 0
+
+
+LASER_BLOCK = re.compile(r's1 \[0\]\s+(\S+)\s+s2 \[90\]\s+(\S+)\s+s3 \[180\]\s+(\S+)\s+'
+                         r's4 \[270\]\s+(\S+)\s+s5 \[359\]\s+(\S+)')
+
+
+def turtlebot3_laser(session):
+    """001: laser_data.py prints beams 0, 90, 180, 270 and 359 of fake_tb3's scans."""
+    launched = session.launch('move_turtlebot3', 'laser_data.launch')
+    session.wait_until(lambda: len(LASER_BLOCK.findall(launched.output())) >= 3, 60,
+                       'laser_data to print three scans')
+    session.stop(launched)
+    blocks = LASER_BLOCK.findall(launched.output())
+    last = ['%.3f m' % float(value) if value != 'inf' else 'inf' for value in blocks[-1]]
+    return LabReport(['laser_data printed %d scans; the last: front %s, left %s, back %s, right %s, '
+                      '359: %s (inf: nothing within 3.5 m)' % tuple([len(blocks)] + last)], [])
+
+
+def turtlebot3_avoid(session):
+    """001: avoid_obstacle.py drives at the wall and stops; wander.py roams 120 simulated seconds."""
+    scans, odoms = Recorder('/scan', LaserScan), Recorder('/odom', Odometry)
+    collisions = Recorder('/collisions', UInt32)
+    launched = session.launch('move_turtlebot3', 'avoid_obstacle.launch')
+
+    def stopped_at_the_wall():
+        last_scans, last_odoms = scans.snapshot()[-2:], odoms.snapshot()[-1:]
+        return (len(last_scans) == 2 and last_odoms and path_length(_odom_points(odoms)) > 1.0
+                and all(scan.ranges[0] <= 0.5 for scan in last_scans)
+                and last_odoms[0].twist.twist.linear.x == 0.0)
+
+    session.wait_until(stopped_at_the_wall, 60, 'avoid_obstacle to stop in front of the wall')
+    front = scans.snapshot()[-1].ranges[0]
+    driven = path_length(_odom_points(odoms))
+    hits = _collisions(collisions)
+    session.stop(launched)
+    lines = ['avoid_obstacle drove %.2f m and stopped %.3f m from the wall; collisions: %d'
+             % (driven, front, hits)]
+
+    odoms.messages.clear()
+    clock = Recorder('/clock', Clock)
+    picture = session.picture('move_turtlebot3-wander.png')
+    launched = session.launch('move_turtlebot3', 'wander.launch', real_time_factor=10,
+                              picture_png=picture)
+    session.wait_until(lambda: clock.snapshot() and clock.snapshot()[-1].clock.to_sec() >= 120.0, 60,
+                       'wander to run 120 simulated seconds')
+    session.call_trigger('/fake_tb3/save_picture')
+    lines.append('wander.py drove %.1f m in 120 simulated seconds in turtlebot3_world; collisions: %d'
+                 % (path_length(_odom_points(odoms)), _collisions(collisions)))
+    session.stop(launched)
+    for recorder in (scans, odoms, collisions, clock):
+        recorder.close()
+    return LabReport(lines, [picture])
+
+
 LABS = [
     Lab('square', 'turtlesim', 'turtlesim draws a square (draw_square)', turtlesim_square),
     Lab('turtle', '000', 'my_turtle drives forward and prints the pose', my_turtle_pose),
     Lab('teleop', '000', 'keyboard teleop -> my_turtle_node -> turtle1', my_turtle_teleop),
     Lab('report', '002', 'the report\'s square and triangle (exercise 5)', report_shapes),
+    Lab('laser', '001', 'TurtleBot3 laser printout (laser_data.py)', turtlebot3_laser),
+    Lab('avoid', '001', 'TurtleBot3 obstacle avoidance (avoid_obstacle.py, wander.py)',
+        turtlebot3_avoid),
 ]

@@ -82,6 +82,7 @@ class Session:
         self.log_dir = os.path.join(output_dir, 'logs')
         os.makedirs(self.log_dir, exist_ok=True)
         self.env = dict(os.environ)
+        self.env['PYTHONUNBUFFERED'] = '1'  # print() of the course nodes reaches the log at once
         self._launched = []
         self._master = None
 
