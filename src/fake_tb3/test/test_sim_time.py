@@ -93,6 +93,9 @@ class SimTimeTest(unittest.TestCase):
     def test_05_non_finite_commands_are_refused_and_the_last_one_holds(self):
         self.drive(-0.5)
         wait_until(lambda: self.odom.latest().twist.twist.linear.x == -0.5, 10, 'backing off')
+        wheels = wait_until(lambda: self.joint_states.latest().velocity[0] < 0
+                            and self.joint_states.latest(), 10, 'the wheels turning back')
+        self.assertEqual(list(wheels.velocity), [-0.5 / 0.033] * 2)  # rad/s on 0.033 m wheels
         self.drive(float('nan'))
         self.drive(0.1, float('inf'))
         wait_until(lambda: rosout_lines(self.rosout, 'non-finite velocity'), 10, 'a warning')
@@ -122,7 +125,7 @@ class SimTimeTest(unittest.TestCase):
                  (['_real_time_factor:=-2'], 'real_time_factor must be positive'),
                  (['_x_pos:=left'], 'parameter x_pos must be a number'),
                  (['_noise_stddev:=-1'], 'parameter noise_stddev must be a finite number >= 0'),
-                 (['_robots:=[3]'], 'parameter robots must be a non-empty list of mappings'),
+                 (['_robots:=[3]'], 'parameter robots must be a list of mappings'),
                  (['_robots:=[{name: a}, {name: a}]'], 'robot names must differ, got a, a'),
                  (['_robots:=[{name: tb3/0}]'], "every robot needs a name made of letters")]
         for index, (arguments, message) in enumerate(cases):

@@ -1,4 +1,5 @@
 """fake_tb3: a 2D TurtleBot3 simulator standing in for Gazebo.
 
-The modules below `node` and `drive_node` import no rospy: they are the pure simulator core.
+The pure core (models, kinematics, geometry, world, lidar, simulation, render, timing, drive, urdf)
+imports no rospy; `node` and `drive_node` are the thin ROS layers around it.
 """

@@ -21,6 +21,7 @@ class RobotModel:
     body_centre_z: float  # z of the collision box centre
     scan_offset: tuple  # base_scan (x, y, z)
     imu_offset: tuple   # imu_link (x, y, z)
+    wheel_offset_y: float  # |y| of the wheel joints in the URDF (about half the separation)
     casters: tuple      # (x, y, z) of each caster
     camera_offset: tuple = None  # camera_link (x, y, z), waffles only
 
@@ -34,6 +35,7 @@ _WAFFLE = dict(wheel_radius=0.033, wheel_separation=0.287, max_linear=0.26, max_
                body_length=0.266, body_width=0.266, body_offset_x=-0.064, body_height=0.094,
                body_centre_z=0.047,
                scan_offset=(-0.064, 0.0, 0.122), imu_offset=(0.0, 0.0, 0.068),
+               wheel_offset_y=0.144,
                casters=((-0.177, 0.064, -0.004), (-0.177, -0.064, -0.004)))
 
 MODELS = {
@@ -41,7 +43,8 @@ MODELS = {
                          max_linear=0.22, max_angular=2.84,
                          body_length=0.140, body_width=0.140, body_offset_x=-0.032,
                          body_height=0.143, body_centre_z=0.070, scan_offset=(-0.032, 0.0, 0.172),
-                         imu_offset=(-0.032, 0.0, 0.068), casters=((-0.081, 0.0, -0.004),)),
+                         imu_offset=(-0.032, 0.0, 0.068), wheel_offset_y=0.08,
+                         casters=((-0.081, 0.0, -0.004),)),
     'waffle': RobotModel(name='waffle', camera_offset=(0.064, -0.065, 0.094), **_WAFFLE),
     'waffle_pi': RobotModel(name='waffle_pi', camera_offset=(0.073, -0.011, 0.084), **_WAFFLE),
 }

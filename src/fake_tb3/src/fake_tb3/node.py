@@ -24,6 +24,7 @@ from sensor_msgs.msg import Imu, JointState, LaserScan
 from std_msgs.msg import UInt32
 from std_srvs.srv import Trigger, TriggerResponse
 
+from fake_tb3.kinematics import wheel_turns
 from fake_tb3.lidar import Laser
 from fake_tb3.models import UnknownModelError, get_model
 from fake_tb3.render import save_picture
@@ -159,13 +160,10 @@ class RobotInterface:
 
     def publish_joint_states(self, stamp):
         robot = self.robot
-        linear, angular = robot.velocity
-        half_track = angular * robot.model.wheel_separation / 2
         message = self.joints_message
         message.header.stamp = stamp
         message.position = list(robot.wheel_angles)
-        message.velocity = [(linear - half_track) / robot.model.wheel_radius,
-                            (linear + half_track) / robot.model.wheel_radius]
+        message.velocity = list(wheel_turns(*robot.velocity, robot.model))  # in one second
         self.joint_states.publish(message)
 
     def publish_imu(self, stamp, dt):
@@ -224,8 +222,7 @@ class FakeTb3Node:
         self.picture_at_shutdown = rospy.get_param('~picture_png', '')
         self.broadcaster = tf2_ros.TransformBroadcaster()
         self.clock = rospy.Publisher('/clock', Clock, queue_size=10) if self.use_sim_time else None
-        multi = len(robots) > 1 or rospy.has_param('~robots')
-        self.interfaces = [RobotInterface(self, robot, robot.name + '/' if multi else '')
+        self.interfaces = [RobotInterface(self, robot, robot.name + '/' if robot.name else '')
                            for robot in robots]
         rospy.Service('~save_picture', Trigger, self._on_save_picture)
         spawns = ', '.join('%s %s at (%.2f, %.2f, yaw %.2f)' % (r.name or 'robot', r.model.name,
@@ -233,12 +230,14 @@ class FakeTb3Node:
         rospy.loginfo('fake_tb3: world %s, %s, %s time x%g', world.name, spawns,
                       'simulated' if self.use_sim_time else 'real', self.real_time_factor)
 
-    def _robot_specs(self):
-        if rospy.has_param('~robots'):
-            specs = rospy.get_param('~robots')
-            if not (isinstance(specs, list) and specs
-                    and all(isinstance(spec, dict) for spec in specs)):
-                raise ConfigError('parameter robots must be a non-empty list of mappings '
+    @staticmethod
+    def _robot_specs():
+        """The robots to spawn: the list `robots` when it has any (robots with names), else one
+        robot without a name from `model`, `x_pos`, `y_pos`, `yaw`."""
+        specs = rospy.get_param('~robots', [])
+        if specs != []:
+            if not (isinstance(specs, list) and all(isinstance(spec, dict) for spec in specs)):
+                raise ConfigError('parameter robots must be a list of mappings '
                                   '{name, model, x_pos, y_pos, yaw}, got %r' % (specs,))
             names = [spec.get('name') for spec in specs]
             for name in names:

@@ -36,7 +36,6 @@ def _joint(name, kind, parent, child, origin, rpy=(0, 0, 0)):
 def turtlebot3_urdf(model, prefix=''):
     """The URDF (XML text) of `model` (a RobotModel)."""
     link = lambda name: prefix + name  # noqa: E731
-    half_track = model.wheel_separation / 2
     parts = ['<?xml version="1.0"?>\n<robot name="turtlebot3_%s">\n' % model.name]
     parts += ['  <material name="%s"><color rgba="%s"/></material>\n' % item
               for item in COLOURS.items()]
@@ -47,7 +46,7 @@ def turtlebot3_urdf(model, prefix=''):
         (model.body_length, model.body_width, model.body_height)),
         (model.body_offset_x, 0, model.body_centre_z), colour='light'))
     wheel = '<cylinder radius="%g" length="%g"/>' % (model.wheel_radius, WHEEL_WIDTH)
-    for side, y in (('left', half_track), ('right', -half_track)):
+    for side, y in (('left', model.wheel_offset_y), ('right', -model.wheel_offset_y)):
         parts.append(_joint('wheel_%s_joint' % side, 'continuous', link('base_link'),
                             link('wheel_%s_link' % side), (0, y, WHEEL_HEIGHT), (-1.5707963, 0, 0)))
         parts.append(_link(link('wheel_%s_link' % side), wheel))
