@@ -2,9 +2,10 @@
 import os
 import pty
 import select
-import signal
 import subprocess
 import time
+
+from course_common.processes import stop_process_group
 
 
 def wait_until(condition, timeout, what='the condition', poll=0.01):
@@ -60,13 +61,7 @@ class PtyProgram:
 
     def stop(self, timeout=10):
         """SIGINT the program (as Ctrl-C in a shell would), then kill it if it hangs; returns exit code."""
-        if self.process.poll() is None:
-            os.killpg(self.process.pid, signal.SIGINT)
-            try:
-                self.process.wait(timeout)
-            except subprocess.TimeoutExpired:
-                os.killpg(self.process.pid, signal.SIGKILL)
-                self.process.wait()
+        stop_process_group(self.process, timeout)
         self.read_available(0)
         os.close(self._fd)
         return self.process.returncode

@@ -13,6 +13,7 @@ from std_msgs.msg import UInt32
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill
 
+from course_common.screen import VirtualScreen, can_make_screens
 from course_common.testing import PtyProgram
 from course_tour.session import Recorder, path_length
 
@@ -183,6 +184,30 @@ def turtlebot3_avoid(session):
     return LabReport(lines, [picture])
 
 
+def _laser_red_pixels(path):
+    import numpy
+    from PIL import Image
+    image = numpy.asarray(Image.open(path).convert('RGB')).astype(int)
+    return int(numpy.sum((image[:, :, 0] > 200) & (image[:, :, 1] < 60) & (image[:, :, 2] < 60)))
+
+
+def turtlebot3_rviz(session):
+    """001: rviz shows the TurtleBot3 model and its laser scan as red points (on a virtual screen)."""
+    if not can_make_screens():
+        return LabReport(['no screenshot: Xvfb or ImageMagick is missing (tools/setup.sh installs them)'], [])
+    screenshot = session.picture('rviz.png')
+    world = session.launch('turtlebot3_gazebo', 'turtlebot3_world.launch')
+    with VirtualScreen() as screen:
+        rviz = session.launch('turtlebot3_gazebo', 'turtlebot3_gazebo_rviz.launch',
+                              env=screen.environment(session.env))
+        session.wait_until(lambda: _laser_red_pixels(screen.screenshot(screenshot)) > 300, 90,
+                           'rviz to draw the laser points')
+        red = _laser_red_pixels(screenshot)
+        session.stop(rviz)
+    session.stop(world)
+    return LabReport(['rviz drew the robot model and the scan: %d laser-red pixels' % red], [screenshot])
+
+
 LABS = [
     Lab('square', 'turtlesim', 'turtlesim draws a square (draw_square)', turtlesim_square),
     Lab('turtle', '000', 'my_turtle drives forward and prints the pose', my_turtle_pose),
@@ -191,4 +216,5 @@ LABS = [
     Lab('laser', '001', 'TurtleBot3 laser printout (laser_data.py)', turtlebot3_laser),
     Lab('avoid', '001', 'TurtleBot3 obstacle avoidance (avoid_obstacle.py, wander.py)',
         turtlebot3_avoid),
+    Lab('rviz', '001', 'rviz with the TurtleBot3 model and the laser scan', turtlebot3_rviz),
 ]

@@ -6,7 +6,6 @@ Ctrl-C in a terminal would, so the simulators save their pictures at shutdown.
 """
 import math
 import os
-import signal
 import socket
 import subprocess
 import threading
@@ -15,6 +14,7 @@ import time
 import rosgraph
 import rospy
 
+from course_common.processes import stop_process_group
 from course_common.testing import wait_until
 
 
@@ -39,13 +39,7 @@ class Launched:
             return log.read()
 
     def stop(self, timeout=20.0):
-        if self.process.poll() is None:
-            os.killpg(self.process.pid, signal.SIGINT)
-            try:
-                self.process.wait(timeout)
-            except subprocess.TimeoutExpired:
-                os.killpg(self.process.pid, signal.SIGKILL)
-                self.process.wait()
+        stop_process_group(self.process, timeout)
         self._log.close()
 
 
@@ -107,13 +101,13 @@ class Session:
     def picture(self, name):
         return os.path.join(self.output_dir, name)
 
-    def launch(self, package, launch_file, **args):
+    def launch(self, package, launch_file, env=None, **args):
         """Start `roslaunch package launch_file name:=value ...` on the tour's master."""
         argv = ['roslaunch', '--wait', package, launch_file]
         argv += ['%s:=%s' % (key, value) for key, value in args.items()]
         log_path = os.path.join(self.log_dir, '%02d-%s.log' % (len(os.listdir(self.log_dir)),
                                                               os.path.splitext(launch_file)[0]))
-        launched = Launched(argv, log_path, self.env, rospy.get_param_names())
+        launched = Launched(argv, log_path, env or self.env, rospy.get_param_names())
         self._launched.append(launched)
         return launched
 

@@ -1,0 +1,47 @@
+"""A virtual X screen (Xvfb) for windows that tests and the tour look at, and screenshots of it."""
+import os
+import shutil
+import subprocess
+
+
+def can_make_screens():
+    """True when Xvfb and ImageMagick's `import` are installed (tools/debian-packages.txt lists them)."""
+    return bool(shutil.which('Xvfb') and shutil.which('import'))
+
+
+class VirtualScreen:
+    """Context manager: an Xvfb on a display number it picks free (-displayfd), stopped at exit."""
+
+    def __init__(self, width=1280, height=1024):
+        self.size = '%dx%dx24' % (width, height)
+        self.display = None
+        self._xvfb = None
+
+    def __enter__(self):
+        read_end, write_end = os.pipe()
+        self._xvfb = subprocess.Popen(
+            ['Xvfb', '-displayfd', str(write_end), '-screen', '0', self.size, '-nolisten', 'tcp'],
+            pass_fds=(write_end,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        os.close(write_end)
+        with os.fdopen(read_end) as announced:
+            number = announced.readline().strip()
+        if not number:
+            self._xvfb.wait(10)
+            raise RuntimeError('Xvfb did not start (exit status %s)' % self._xvfb.returncode)
+        self.display = ':' + number
+        return self
+
+    def __exit__(self, *exc):
+        self._xvfb.terminate()
+        self._xvfb.wait(10)
+        return False
+
+    def environment(self, base=None):
+        """A copy of the environment (default os.environ) whose programs draw on this screen."""
+        return dict(os.environ if base is None else base, DISPLAY=self.display)
+
+    def screenshot(self, path):
+        """Write the whole screen as PNG to path and return path."""
+        subprocess.run(['import', '-display', self.display, '-window', 'root', path], check=True,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, timeout=30)
+        return path
