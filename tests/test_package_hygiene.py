@@ -23,3 +23,25 @@ def test_readme_commands_are_executable_scripts_here():
 def test_ci_runs_exactly_the_readme_test_command():
     ci = open(os.path.join(ROOT, '.ci', 'run')).read()
     assert re.search(r'^\./test\.sh$', ci, re.MULTILINE)
+
+
+def python_sources():
+    """Every Python file of the project: *.py and the executables whose first line runs python3."""
+    for folder in ('src', 'tests', 'bench', 'tools'):
+        for parent, _, names in os.walk(os.path.join(ROOT, folder)):
+            for name in names:
+                path = os.path.join(parent, name)
+                if name.endswith('.py'):
+                    yield path
+                elif os.access(path, os.X_OK) and os.path.isfile(path):
+                    with open(path, 'rb') as source:
+                        if source.readline().startswith(b'#!/usr/bin/env python3'):
+                            yield path
+
+
+def test_python_has_no_unused_imports_or_undefined_names():
+    sources = sorted(python_sources())
+    assert len(sources) > 50
+    result = subprocess.run(['/usr/bin/python3', '-m', 'pyflakes'] + sources,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
+    assert result.returncode == 0, result.stdout

@@ -2,7 +2,6 @@
 test's master, and watch the simulated robot through fake_tb3's topics."""
 import math
 import os
-import signal
 import subprocess
 import threading
 import unittest
@@ -15,6 +14,7 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import UInt32
 
+from course_common.processes import stop_process_group
 from course_common.testing import wait_until
 
 
@@ -61,13 +61,7 @@ class Launch:
 
     def stop(self):
         """Ctrl-C, as in the terminal; roslaunch stops its nodes. Kill only if it hangs."""
-        if self.process.poll() is None:
-            os.killpg(self.process.pid, signal.SIGINT)
-            try:
-                self.process.wait(30)
-            except subprocess.TimeoutExpired:
-                os.killpg(self.process.pid, signal.SIGKILL)
-                self.process.wait()
+        stop_process_group(self.process, 30)
         self._reader.join(5)
 
 

@@ -1,8 +1,6 @@
 """What the ros_exercises rostests share: run the commands a student types, record a turtle's poses
 and save turtlesim's canvas."""
-import os
 import re
-import signal
 import subprocess
 import threading
 
@@ -11,6 +9,7 @@ import rospy
 from std_srvs.srv import Trigger
 from turtlesim.msg import Pose
 
+from course_common.processes import stop_process_group
 from course_common.testing import PtyProgram, wait_until
 
 
@@ -42,13 +41,7 @@ class Command:
 
     def stop(self, timeout=20):
         """Ctrl-C, then the exit code once everything it started has stopped."""
-        process = self.program.process
-        if process.poll() is None:
-            os.killpg(process.pid, signal.SIGINT)
-            try:
-                process.wait(timeout)
-            except subprocess.TimeoutExpired:
-                pass  # PtyProgram.stop() kills it
+        stop_process_group(self.program.process, timeout)
         self._reading = False
         self._reader.join()
         return self.program.stop()
