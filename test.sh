@@ -20,30 +20,45 @@ if [ $# -gt 0 ]; then packages=("$@"); else
 fi
 step_failures=()
 
-# 1. Pure tests: no master, milliseconds each.
+# 1. Pure tests: no master, milliseconds each. One pytest per folder, so that test modules of the
+#    same name in two packages (test_world.py) do not meet.
 unit_dirs=()
 for pkg in "${packages[@]}"; do
     dir=$(dirname "$(grep -l "<name>$pkg</name>" "$ROOT"/src/*/package.xml "$ROOT"/src/*/*/package.xml 2>/dev/null | head -n1)")
     [ -d "$dir/test/unit" ] && unit_dirs+=("$dir/test/unit")
 done
 [ $# -eq 0 ] && unit_dirs+=("$ROOT/tests")
-if [ ${#unit_dirs[@]} -gt 0 ]; then
-    echo "test: pytest ${unit_dirs[*]}"
-    /usr/bin/python3 -m pytest -q -p no:cacheprovider --junitxml="$RESULTS/pytest/pytest.xml" "${unit_dirs[@]}"
-    rc=$?
-    [ $rc -ne 0 ] && [ $rc -ne 1 ] && step_failures+=("pytest (exit $rc)")
-fi
+for dir in "${unit_dirs[@]}"; do
+    name=$(basename "$(dirname "$(dirname "$dir")")"); [ "$dir" = "$ROOT/tests" ] && name=workspace
+    echo "test: pytest ${dir#"$ROOT"/}"
+    /usr/bin/python3 -m pytest -q -p no:cacheprovider --junitxml="$RESULTS/pytest/$name.xml" "$dir" | tail -n 1
+    rc=${PIPESTATUS[0]}
+    [ "$rc" -ne 0 ] && [ "$rc" -ne 1 ] && step_failures+=("pytest $dir (exit $rc: it could not run its tests)")
+done
 
 # 2. rostests, one after the other (each starts its own master on a free port).
 catkin_args=(--directory "$ROOT" --build "$BASE/build" -DCATKIN_DEVEL_PREFIX="$BASE/devel"
              -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCATKIN_WHITELIST_PACKAGES="${CATKIN_WHITELIST:-}")
-if [ $# -gt 0 ]; then targets=(); for pkg in "${packages[@]}"; do targets+=("run_tests_$pkg"); done
+if [ $# -gt 0 ]; then
+    targets=()  # a package gets a run_tests_<pkg> target only when it registers tests
+    for pkg in "${packages[@]}"; do
+        dir=$(dirname "$(grep -l "<name>$pkg</name>" "$ROOT"/src/*/package.xml "$ROOT"/src/*/*/package.xml | head -n1)")
+        grep -q add_rostest "$dir/CMakeLists.txt" && targets+=("run_tests_$pkg")
+    done
 else targets=(run_tests); fi
 echo "test: rostest (${targets[*]})"
 if ! catkin_make "${catkin_args[@]}" tests -j2 > "$BASE/build/test_build.log" 2>&1; then
     tail -n 40 "$BASE/build/test_build.log"; step_failures+=("building the tests")
 fi
-catkin_make "${catkin_args[@]}" "${targets[@]}" -j1 2>&1 | grep -E "^\[(ROSTEST|ROSUNIT)\]|FAILURE|ERROR|^-- run_tests|rostest --" || true
+# One line per .test file, and rostest's own lines about failures.
+if [ ${#targets[@]} -gt 0 ]; then
+    catkin_make "${catkin_args[@]}" "${targets[@]}" -j1 > "$BASE/build/rostest.log" 2>&1 &
+    tail --pid=$! -n +1 -f "$BASE/build/rostest.log" | awk '
+        /\/usr\/bin\/rostest / { file = $NF; sub(".*/src/", "", file); print "test: rostest " file; fflush(); next }
+        /RESULT: FAIL|\[FAILURE\]|\[ERROR\] \[Testcase/ { print "      " $0; fflush() }'
+    wait $! || step_failures+=("running the rostests (see $BASE/build/rostest.log)")
+fi
+
 
 # 3. One count over everything that ran.
 /usr/bin/python3 "$ROOT/tools/count_results.py" "$RESULTS" "${step_failures[@]}"
