@@ -17,8 +17,8 @@ from std_srvs.srv import Empty, Trigger
 from course_common.testing import wait_until
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
-from turtlesim_testing import (Recorder, RosoutWatcher, connected_publisher, graph, published_topics,
-                               twist, wait_until_still)
+from turtlesim_testing import (Recorder, RosoutWatcher, connected_publisher, graph, moved, published_topics,
+                               twist)
 
 WORLD_SIZE = 499 / 45  # metres; float32 poses may exceed it by 1e-6
 BACKGROUND = (69, 86, 255)
@@ -110,9 +110,7 @@ class TurtlesimInterfaceTest(unittest.TestCase):
         self.teleport(2.0, 5.0, 0.0)
         cmd_vel = connected_publisher('/turtle1/cmd_vel', Twist)
         wait_until(lambda: abs(self.pose.next_message().x - 2.0) < 1e-6, 5.0, 'the teleport')
-        cmd_vel.publish(twist(1.0))
-        wait_until(lambda: self.pose.next_message().linear_velocity == 1.0, 5.0, 'the turtle to move')
-        stopped = wait_until_still(self.pose)
+        stopped = moved(lambda: cmd_vel.publish(twist(1.0)), self.pose)
         self.assertAlmostEqual(stopped.x - 2.0, 1.008, delta=0.02)  # 63 ticks of 16 ms at 1 m/s
         self.assertAlmostEqual(stopped.y, 5.0, places=5)
 
@@ -187,8 +185,8 @@ class TurtlesimInterfaceTest(unittest.TestCase):
         colour = Recorder('/turtle1/color_sensor', Color)
         self.assertEqual(tuple(colour.next_message().__getstate__()), BACKGROUND)
         service('/turtle1/set_pen', SetPen)(255, 0, 0, 4, 0)
-        connected_publisher('/turtle1/cmd_vel', Twist).publish(twist(1.0))
-        wait_until_still(self.pose)
+        cmd_vel = connected_publisher('/turtle1/cmd_vel', Twist)
+        moved(lambda: cmd_vel.publish(twist(1.0)), self.pose)
         self.assertEqual(tuple(colour.next_message().__getstate__()), (255, 0, 0))
         colour.close()
 

@@ -2,13 +2,12 @@
 """Starting and stopping turtlesim: silent headless start, clean Ctrl-C, the canvas saved at shutdown
 by the demo launch file, the window under Xvfb, and multisim.launch."""
 import os
+import re
 import signal
 import subprocess
 import tempfile
-import time
 import unittest
 
-import rosgraph
 import rospy
 import rostest
 from PIL import Image as PilImage
@@ -37,11 +36,8 @@ def interrupt(process, timeout=30.0):
 
 
 def registered(node):
-    try:
-        rosgraph.Master('/lifecycle_test').lookupNode(node)
-    except rosgraph.MasterError:
-        return False
-    return True
+    """Whether `rosnode list` shows the node: it still has a topic or service at the master."""
+    return any(node in nodes for names in graph() for nodes in names.values())
 
 
 def wait_for_service(name):
@@ -68,12 +64,17 @@ class Xvfb:
                 return
         raise AssertionError('no free X display number for Xvfb')
 
+    def window_id(self, title):
+        """The id of the window with this title (xwininfo), or None if there is none."""
+        result = subprocess.run(['xwininfo', '-name', title], env=dict(os.environ, DISPLAY=self.display),
+                                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        match = re.search(r'Window id: (0x[0-9a-f]+)', result.stdout)
+        return match.group(1) if result.returncode == 0 and match else None
+
     def screenshot(self, window, path):
-        """`import -window <window>` into a PNG; returns the RGB picture or None if there is no such window."""
-        result = subprocess.run(['import', '-window', window, path], env=dict(os.environ, DISPLAY=self.display),
-                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        if result.returncode != 0:
-            return None
+        """`import -window <window>` (an id or 'root') into a PNG; returns the RGB picture."""
+        subprocess.run(['import', '-window', window, path], env=dict(os.environ, DISPLAY=self.display),
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True, timeout=20)
         with PilImage.open(path) as image:
             return image.convert('RGB')
 
@@ -149,24 +150,26 @@ class LifecycleTest(unittest.TestCase):
             # the trail from the centre to (2, 2) m is about 226 px long and 5 px wide
             wait_until(lambda: count(screen.screenshot('root', shot), MAGENTA) > 800, 20.0,
                        'the magenta trail on the screen')
-            window = screen.screenshot('TurtleSim', shot)
+            window = screen.screenshot(screen.window_id('TurtleSim'), shot)
             self.assertEqual(window.size, (500, 500))
             self.assertEqual(window.getpixel((480, 20)), BACKGROUND)
             code, _, err = interrupt(sim)
             self.assertEqual((code, err), (0, ''))
-            wait_until(lambda: screen.screenshot('TurtleSim', shot) is None, 10.0, 'the window to close')
+            wait_until(lambda: screen.window_id('TurtleSim') is None, 10.0, 'the window to close')
 
             quiet = self.start(['rosrun', 'turtlesim', 'turtlesim_node', '__ns:=no_gui', '_gui:=false'],
                           DISPLAY=screen.display)
-            wait_for_service('/no_gui/turtle1/teleport_absolute')
-            time.sleep(0.5)  # give a window the time it would need to appear: there must be none
-            self.assertIsNone(screen.screenshot('TurtleSim', shot))
+            # half a second of poses: the time a window would need to appear (it takes ~50 ms)
+            poses = Recorder('/no_gui/turtle1/pose', Pose)
+            wait_until(lambda: poses.count() > 30, 20.0, 'poses from /no_gui/turtlesim')
+            poses.close()
+            self.assertIsNone(screen.window_id('TurtleSim'))
             self.assertEqual(interrupt(quiet)[2], '')
 
     def test_multisim_runs_two_independent_simulators(self):
         multisim = self.start(['roslaunch', 'turtlesim', 'multisim.launch'])
-        wait_until(lambda: {'/turtlesim1/turtle1/pose', '/turtlesim2/turtle1/pose'} <= set(published_topics()),
-                   30.0, 'both simulators')
+        wait_until(lambda: {'/turtlesim1/turtle1/pose', '/turtlesim2/turtle1/pose'} <= set(published_topics())
+                   and {'/turtlesim1/spawn', '/turtlesim2/reset'} <= set(graph()[2]), 30.0, 'both simulators')
         self.assertTrue(registered('/turtlesim1/sim') and registered('/turtlesim2/sim'))
         services = graph()[2]
         self.assertEqual(services['/turtlesim1/spawn'], ['/turtlesim1/sim'])

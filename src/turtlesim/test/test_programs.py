@@ -10,7 +10,7 @@ import rostest
 from course_common.testing import PtyProgram, wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn, TeleportAbsolute
-from turtlesim_testing import Recorder, publishes_to, wait_until_still
+from turtlesim_testing import Recorder, moved, publishes_to, wait_until_still
 
 UP, DOWN, RIGHT, LEFT = '\x1b[A', '\x1b[B', '\x1b[C', '\x1b[D'
 ONE_KEY_TICKS = 63  # a single command lasts 1 s: 63 ticks of 16 ms
@@ -36,12 +36,8 @@ class TeleopAndMimicTest(unittest.TestCase):
 
     def press(self, teleop, key):
         """Press a key; return turtle1's and turtle2's poses before and after the motion it causes."""
-        wait_until_still(self.turtle1)
-        before = (self.turtle1.latest(), wait_until_still(self.turtle2))
-        teleop.type(key)
-        wait_until(lambda: self.turtle1.next_message().linear_velocity + abs(self.turtle1.latest().angular_velocity)
-                   > 0.0, 5.0, 'turtle1 to move')
-        after = (wait_until_still(self.turtle1), wait_until_still(self.turtle2))
+        before = (wait_until_still(self.turtle1), wait_until_still(self.turtle2))
+        after = (moved(lambda: teleop.type(key), self.turtle1), wait_until_still(self.turtle2))
         return before, after
 
     def test_arrow_keys_drive_turtle1_and_mimic_copies_them(self):

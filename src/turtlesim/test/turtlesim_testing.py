@@ -104,5 +104,16 @@ def wait_until_still(recorder, timeout=5.0):
     """Wait for a pose with zero velocities (the turtle has stopped) and return it."""
     def still():
         pose = recorder.next_message()
-        return pose if (pose.linear_velocity, pose.angular_velocity) == (0.0, 0.0) else None
+        return None if moving(pose) else pose
     return wait_until(still, timeout, 'the turtle to stop')
+
+
+def moved(action, recorder, timeout=10.0):
+    """Do action() (e.g. publish a command), wait until the turtle moves and stops again; the still pose."""
+    action()
+    wait_until(lambda: moving(recorder.next_message()), timeout, 'the turtle to move')
+    return wait_until_still(recorder, timeout)
+
+
+def moving(pose):
+    return pose.linear_velocity != 0.0 or pose.angular_velocity != 0.0

@@ -9,6 +9,7 @@ a lock and are drawn outside it.
 """
 import collections
 import os
+import signal
 import threading
 import time
 
@@ -94,7 +95,9 @@ class TurtleInterface:
 
 class TurtlesimNode:
     def __init__(self):
-        rospy.init_node('turtlesim')
+        # Ctrl-C is handled in main(): rospy's own handler could run while this thread registers
+        # with the master and wait for a lock that this very thread holds.
+        rospy.init_node('turtlesim', disable_signals=True)
         rospy.loginfo('Starting turtlesim with node name %s' % rospy.get_name())
         for channel, value in zip(('r', 'g', 'b'), DEFAULT_BACKGROUND):
             if not rospy.has_param('~background_' + channel):
@@ -262,7 +265,7 @@ class TurtlesimNode:
     @staticmethod
     def canvas_path(param_value):
         """Where ~canvas_png points: relative paths start at ROS_HOME, where roslaunch runs nodes."""
-        path = os.path.expanduser(param_value or 'turtlesim_canvas.png')
+        path = os.path.expanduser(str(param_value) if param_value else 'turtlesim_canvas.png')
         return os.path.normpath(os.path.join(rospkg.get_ros_home(), path))
 
     def write_canvas(self, path):
@@ -333,13 +336,27 @@ def _wants_window():
     return rospy.get_param('~gui', True) not in (False, 'false', 'False', 0)
 
 
+def _stop_on_signals():
+    """An event set by Ctrl-C (SIGINT) or SIGTERM; the main thread then shuts the node down."""
+    requested = threading.Event()
+    for signal_number in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signal_number, lambda *_: requested.set())
+    return requested
+
+
 def main():
+    stop = _stop_on_signals()
     node = TurtlesimNode()
     node.start()
+
+    def running():
+        return not (stop.is_set() or rospy.is_shutdown())
     if _wants_window():
         from turtlesim.window import run_window
-        run_window(node)
+        run_window(node, running, SHUTDOWN_POLL)
     else:
-        rospy.spin()
+        while running():
+            stop.wait(SHUTDOWN_POLL)
+    rospy.signal_shutdown('Ctrl-C' if stop.is_set() else 'shut down')
     node.join()
     node.save_at_shutdown()

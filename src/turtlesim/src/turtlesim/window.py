@@ -3,6 +3,7 @@
 Runs in the main thread (Tk wants that); the tick thread keeps stepping the world meanwhile.
 Closing the window shuts the node down, like closing the original's window.
 """
+import time
 import tkinter
 
 import rospy
@@ -13,13 +14,14 @@ from turtlesim.canvas import CANVAS_PX
 REFRESH_MS = 40  # 25 pictures per second at most, and only when something changed
 
 
-def run_window(node):
-    """Show the window until the node shuts down. Without a usable display, stay headless."""
+def run_window(node, running, poll_seconds):
+    """Show the window while running() is true. Without a usable display, run headless."""
     try:
         root = tkinter.Tk()
     except tkinter.TclError as error:
         rospy.logwarn('Cannot open the TurtleSim window (%s): running without a window' % error)
-        rospy.spin()
+        while running():
+            time.sleep(poll_seconds)
         return
     root.title('TurtleSim')
     root.resizable(False, False)
@@ -29,7 +31,7 @@ def run_window(node):
     shown = [None]  # revision of the world on screen
 
     def refresh():
-        if rospy.is_shutdown():
+        if not running():
             root.destroy()
             return
         revision = node.revision()

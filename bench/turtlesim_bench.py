@@ -1,0 +1,147 @@
+#!/usr/bin/env python3
+"""turtlesim benchmark: tick rate, p99 gap between pose messages and CPU of the node, for 1/100/500 turtles.
+
+Starts its own roscore on a free port and a headless turtlesim_node, spawns turtles through /spawn,
+listens to the last turtle's pose, and prints a Markdown table. Run it after `source tools/env.sh`:
+
+    python3 bench/turtlesim_bench.py [--window SECONDS] [--sizes 1 100 500]
+
+The CPU share is the node's user + system time (from /proc/<pid>/stat) over the measuring window,
+in percent of one core. Targets (issue 2): 62.5 Hz, p99 gap <= 18 ms, CPU <= 3 %, 6 %, 35 %.
+"""
+import argparse
+import os
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+import xmlrpc.client
+
+import rosgraph
+import rospy
+
+from turtlesim.msg import Pose
+from turtlesim.srv import Spawn
+
+TARGET_CPU = {1: 3.0, 100: 6.0, 500: 35.0}
+TARGET_RATE = 62.5
+TARGET_P99_MS = 18.0
+
+
+def free_port():
+    with socket.socket() as probe:
+        probe.bind(('localhost', 0))
+        return probe.getsockname()[1]
+
+
+def wait_for(condition, timeout, what):
+    deadline = time.monotonic() + timeout
+    while not condition():
+        if time.monotonic() > deadline:
+            sys.exit('turtlesim_bench: timed out waiting for %s' % what)
+        time.sleep(0.05)
+
+
+def cpu_seconds(pid):
+    """User + system CPU time of a process so far (fields 14 and 15 of /proc/<pid>/stat)."""
+    with open('/proc/%d/stat' % pid) as stat:
+        fields = stat.read().rsplit(')', 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
+
+
+class PoseTimes:
+    """Arrival times of the messages on one pose topic."""
+
+    def __init__(self, topic):
+        self.times = []
+        self._lock = threading.Lock()
+        self.subscriber = rospy.Subscriber(topic, Pose, self._arrived, queue_size=10)
+
+    def _arrived(self, _pose):
+        with self._lock:
+            self.times.append(time.monotonic())
+
+    def between(self, start, end):
+        with self._lock:
+            return [arrival for arrival in self.times if start <= arrival <= end]
+
+
+def sleep_loop_p99_lateness(seconds):
+    """p99 of how late a bare Python loop wakes up on a 16 ms grid: the machine's own jitter (ms)."""
+    lateness, next_tick = [], time.monotonic()
+    for _ in range(int(seconds / 0.016)):
+        next_tick += 0.016
+        time.sleep(max(0.0, next_tick - time.monotonic()))
+        lateness.append(time.monotonic() - next_tick)
+    lateness.sort()
+    return lateness[int(0.99 * (len(lateness) - 1))] * 1000.0
+
+
+def measure(pid, topic, window):
+    poses = PoseTimes(topic)
+    wait_for(lambda: len(poses.between(0.0, time.monotonic())) >= 20, 20.0, 'poses on %s' % topic)
+    start, cpu_start = time.monotonic(), cpu_seconds(pid)
+    time.sleep(window)
+    end, cpu_end = time.monotonic(), cpu_seconds(pid)
+    poses.subscriber.unregister()
+    arrivals = poses.between(start, end)
+    gaps = sorted(later - earlier for earlier, later in zip(arrivals, arrivals[1:]))
+    rate = (len(arrivals) - 1) / (arrivals[-1] - arrivals[0])
+    p99 = gaps[min(len(gaps) - 1, int(round(0.99 * (len(gaps) - 1))))]
+    return rate, p99 * 1000.0, gaps[-1] * 1000.0, 100.0 * (cpu_end - cpu_start) / (end - start)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    parser.add_argument('--window', type=float, default=10.0, help='seconds measured per size (default 10)')
+    parser.add_argument('--sizes', type=int, nargs='+', default=[1, 100, 500], help='turtle counts')
+    args = parser.parse_args()
+
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
+    env.pop('DISPLAY', None)
+    os.environ['ROS_MASTER_URI'] = env['ROS_MASTER_URI']
+    started = []
+    try:
+        started.append(subprocess.Popen(['roscore', '-p', str(port)], env=env, stdout=subprocess.DEVNULL,
+                                        stderr=subprocess.DEVNULL, start_new_session=True))
+        wait_for(lambda: rosgraph.is_master_online(), 30.0, 'roscore on port %d' % port)
+        started.append(subprocess.Popen(['rosrun', 'turtlesim', 'turtlesim_node'], env=env,
+                                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                        start_new_session=True))
+        rospy.init_node('turtlesim_bench', disable_signals=True)
+        rospy.wait_for_service('/spawn', 30.0)
+        node_uri = rosgraph.Master('/turtlesim_bench').lookupNode('/turtlesim')
+        pid = xmlrpc.client.ServerProxy(node_uri).getPid('/turtlesim_bench')[2]
+        spawn = rospy.ServiceProxy('/spawn', Spawn)
+
+        print('| turtles | tick rate (Hz) | p99 gap (ms) | max gap (ms) | CPU (% of a core) | CPU target |')
+        print('|--------:|---------------:|-------------:|-------------:|------------------:|-----------:|')
+        count, last = 1, 'turtle1'
+        for size in sorted(args.sizes):
+            while count < size:
+                count += 1
+                last = spawn(1.0 + (count % 20) * 0.45, 1.0 + (count // 20 % 20) * 0.45, 0.0, '').name
+            rate, p99, worst, cpu = measure(pid, '/%s/pose' % last, args.window)
+            target = '<= %.0f %%' % TARGET_CPU[size] if size in TARGET_CPU else '-'
+            print('| %7d | %14.2f | %12.1f | %12.1f | %17.1f | %10s |' % (size, rate, p99, worst, cpu, target))
+            sys.stdout.flush()
+        print('\nTargets: %.1f Hz, p99 gap <= %.0f ms. Window %.0f s per size, %d cores, load average %.2f.'
+              % (TARGET_RATE, TARGET_P99_MS, args.window, os.cpu_count(), os.getloadavg()[0]))
+        print('Machine jitter: a bare Python sleep loop on the same 16 ms grid wakes up to %.1f ms late (p99), '
+              'which adds to every gap above.' % sleep_loop_p99_lateness(5.0))
+    finally:
+        for process in reversed(started):
+            if process.poll() is None:
+                os.killpg(process.pid, signal.SIGINT)
+                try:
+                    process.wait(20)
+                except subprocess.TimeoutExpired:
+                    os.killpg(process.pid, signal.SIGKILL)
+                    process.wait()
+
+
+if __name__ == '__main__':
+    main()
