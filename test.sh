@@ -30,8 +30,16 @@ done
 [ $# -eq 0 ] && unit_dirs+=("$ROOT/tests")
 for dir in "${unit_dirs[@]}"; do
     name=$(basename "$(dirname "$(dirname "$dir")")"); [ "$dir" = "$ROOT/tests" ] && name=workspace
+    pytest_args=()
+    if [ "$dir" = "$ROOT/tests" ] && [ "$(id -u)" != 0 ]; then
+        # Two network namespaces need CAP_NET_ADMIN: this test runs where the tests run as root
+        # (CI's host side), not as the Docker image's ordinary user.
+        echo "test: tests/network/test_two_hosts.py needs root: not run here"
+        pytest_args+=(--ignore="$ROOT/tests/network/test_two_hosts.py")
+    fi
     echo "test: pytest ${dir#"$ROOT"/}"
-    /usr/bin/python3 -m pytest -q -p no:cacheprovider --junitxml="$RESULTS/pytest/$name.xml" "$dir" | tail -n 1
+    /usr/bin/python3 -m pytest -q -p no:cacheprovider --junitxml="$RESULTS/pytest/$name.xml" \
+        "${pytest_args[@]}" "$dir" | tail -n 1
     rc=${PIPESTATUS[0]}
     [ "$rc" -ne 0 ] && [ "$rc" -ne 1 ] && step_failures+=("pytest $dir (exit $rc: it could not run its tests)")
 done

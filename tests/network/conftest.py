@@ -1,9 +1,7 @@
-"""Fixtures of the network tests: children that are always stopped, the loopback library."""
-import os
-
+"""Fixtures of the network tests: children that are always stopped, and their logs on failure."""
 import pytest
 
-from rosnet import Processes, project_environment
+from rosnet import Processes
 
 
 @pytest.fixture
@@ -21,11 +19,13 @@ def module_processes(tmp_path_factory):
     started.stop_all()
 
 
-@pytest.fixture(scope='session')
-def loopback_library():
-    """libros_loopback.so as built into the workspace (devel or install space)."""
-    for folder in project_environment().get('LD_LIBRARY_PATH', '').split(':'):
-        candidate = os.path.join(folder, 'libros_loopback.so')
-        if folder and os.path.isfile(candidate):
-            return candidate
-    raise AssertionError('libros_loopback.so is not in the workspace: build ros_loopback first')
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    """A failed test shows the end of every child's output (the simulator's log says why)."""
+    outcome = yield
+    report = outcome.get_result()
+    if report.failed and call.when == 'call':
+        for name in ('processes', 'module_processes'):
+            started = item.funcargs.get(name)
+            if started is not None:
+                report.sections.append(('children (%s)' % name, started.logs()))

@@ -6,7 +6,6 @@ each leaves the graph as it found it (turtlesim running, no course node).
 """
 import rosgraph
 
-from course_common.testing import wait_until
 from rosnet import now, start_master, start_probe
 from scenarios import POSE_FIELDS, TURTLESIM_POSE_HZ, publish
 
@@ -16,7 +15,9 @@ STOP_TIMEOUT = 1.0 + 0.5
 
 
 def course_node(graph, name, *argv):
-    """Start a course node of the workspace with rosrun, in the graph's environment."""
+    """Start a course node of the workspace with rosrun, in the graph's environment, once turtle1
+    is still: whatever moves it afterwards is this node, not the last commands of an earlier one."""
+    wait_for_pose(graph, stopped, 'turtle1 to be still before %s starts' % name, STOP_TIMEOUT)
     return graph.processes.start(name, ['rosrun'] + list(argv), graph.env)
 
 
@@ -29,11 +30,11 @@ def stopped(values):
     return values['linear_velocity'] == 0.0 and values['angular_velocity'] == 0.0
 
 
-def wait_for_pose(graph, condition, what, timeout=RECOVERY_TIMEOUT):
-    """Seconds until a pose arriving after this call satisfies `condition`."""
-    start = now()
-    graph.main_probe.wait_for(condition, timeout, what)
-    return now() - start
+def wait_for_pose(graph, condition, what, timeout=RECOVERY_TIMEOUT, since=None):
+    """Seconds from `since` (default: now) until a pose arriving after this call satisfies `condition`."""
+    start = now() if since is None else since
+    pose = graph.main_probe.wait_for(condition, timeout, what)
+    return pose['t'] - start
 
 
 def restart_simulator(graph):
@@ -51,19 +52,27 @@ def simulator_killed_under_circle(graph):
     recovered = wait_for_pose(graph, circling, 'circle to drive the restarted turtlesim')
     assert circle.running(), circle.log()[-2000:]
     circle.stop()
-    return {'circle drives the restarted turtlesim after (s)': recovered}
+    return {'circle drives the restarted turtlesim after': recovered}
+
+
+def kill_and_restart(graph, driven, name, *rosrun_args):
+    """Start a course node, wait until it drives, SIGKILL it: returns (seconds from the kill until
+    the turtle stopped, seconds from the restart until it drives again, the restarted Process)."""
+    node = course_node(graph, name, *rosrun_args)
+    wait_for_pose(graph, driven, '%s to drive turtle1' % name)
+    killed = now()
+    node.kill()
+    stop = wait_for_pose(graph, stopped, 'turtle1 to stop without %s' % name, STOP_TIMEOUT, since=killed)
+    node = course_node(graph, name, *rosrun_args)
+    back = wait_for_pose(graph, driven, 'the restarted %s to drive turtle1' % name)
+    return stop, back, node
 
 
 def course_node_killed(graph):
     """circle dies (SIGKILL): the turtle stops by turtlesim's timeout; circle started again drives."""
-    circle = course_node(graph, 'circle', 'ros_exercises', 'circle')
-    wait_for_pose(graph, circling, 'circle to drive turtle1')
-    circle.kill()
-    stop = wait_for_pose(graph, stopped, 'turtle1 to stop without commands', STOP_TIMEOUT)
-    circle = course_node(graph, 'circle', 'ros_exercises', 'circle')
-    recovered = wait_for_pose(graph, circling, 'the restarted circle to drive turtle1')
+    stop, back, circle = kill_and_restart(graph, circling, 'circle', 'ros_exercises', 'circle')
     circle.stop()
-    return {'turtle stopped after the node died (s)': stop, 'restarted circle drives after (s)': recovered}
+    return {'turtle stopped after the kill': stop, 'restarted circle drives after': back}
 
 
 def teleop_relay_killed(graph):
@@ -74,19 +83,14 @@ def teleop_relay_killed(graph):
     def relayed(values):
         return abs(values['linear_velocity'] - 0.8) < 1e-6 and abs(values['angular_velocity'] + 0.4) < 1e-6
 
-    relay = course_node(graph, 'my_turtle_node', 'my_turtle', 'my_turtle_node')
-    wait_for_pose(graph, relayed, 'my_turtle_node to relay the teleop')
-    relay.kill()
-    stop = wait_for_pose(graph, stopped, 'turtle1 to stop without the relay', STOP_TIMEOUT)
-    relay = course_node(graph, 'my_turtle_node', 'my_turtle', 'my_turtle_node')
-    relay_back = wait_for_pose(graph, relayed, 'the restarted my_turtle_node to relay the teleop')
+    stop, back, relay = kill_and_restart(graph, relayed, 'my_turtle_node', 'my_turtle', 'my_turtle_node')
     restart_simulator(graph)
     simulator_back = wait_for_pose(graph, relayed, 'my_turtle_node to drive the restarted turtlesim')
     relay.stop()
     teleop.stop()
-    return {'turtle stopped after the relay died (s)': stop,
-            'restarted relay drives after (s)': relay_back,
-            'relay drives the restarted turtlesim after (s)': simulator_back}
+    return {'turtle stopped after the kill': stop,
+            'restarted relay drives after': back,
+            'relay drives the restarted turtlesim after': simulator_back}
 
 
 def registered(graph, topic):
@@ -109,10 +113,10 @@ def master_restarted(graph):
     # What the user does: start every node again (turtlesim, circle, and the probe, a node too).
     restart_simulator(graph)
     circle.kill()
-    circle = course_node(graph, 'circle', 'ros_exercises', 'circle')
     graph.main_probe.stop()
     probe = start_probe(graph.processes, 'pose-again', graph.env, '/turtle1/pose', POSE_FIELDS)
     graph.probes['/turtle1/pose'] = (probe, TURTLESIM_POSE_HZ)
+    circle = course_node(graph, 'circle', 'ros_exercises', 'circle')
     recovered = wait_for_pose(graph, circling, 'circle to drive turtlesim after both restarted')
     known_again = registered(graph, '/turtle1/pose')
     circle.stop()

@@ -7,13 +7,18 @@ Needs root (CAP_NET_ADMIN); the Docker image's non-root user cannot run it.
 import os
 import re
 import subprocess
+import time
 
-from rosnet import project_environment
+import faults
+from rosnet import now, project_environment, start_master, start_probe
+from scenarios import ODOM_FIELDS, POSE_FIELDS
 
 HOST_A_ADDRESS = '10.200.0.1'
 HOST_B_ADDRESS = '10.200.0.2'
 PREFIX = 'rosres'
 IP_TIMEOUT = 10
+DRIVEN_TIMEOUT = 40.0  # two masterless hosts starting a master, a simulator and a course node
+RESUME_TIMEOUT = 15.0  # TCP retransmits with back-off: the first one after the link is back wins
 
 
 def _run(*argv):
@@ -33,8 +38,7 @@ def require_root():
 
 def remove_stale_namespaces():
     """Namespaces of earlier runs whose pytest died before cleaning up (named after its PID)."""
-    for name in re.findall(r'^(%s_[ab]_(\d+))' % PREFIX, _run('ip', 'netns', 'list'), re.MULTILINE):
-        namespace, pid = name
+    for namespace, pid in re.findall(r'^(%s_[ab]_(\d+))' % PREFIX, _run('ip', 'netns', 'list'), re.MULTILINE):
         if not os.path.exists('/proc/%s' % pid):
             subprocess.run(['ip', 'netns', 'delete', namespace], timeout=IP_TIMEOUT)
 
@@ -91,3 +95,65 @@ class TwoHosts:
         """What the README tells a user on each machine to export before `source tools/env.sh`."""
         return project_environment(ROS_MASTER_URI='http://%s:11311' % HOST_A_ADDRESS,
                                    ROS_IP=HOST_A_ADDRESS if host == self.a else HOST_B_ADDRESS)
+
+
+class RemoteControl:
+    """A simulator on host A driven by a course node on host B, watched by a probe on host A."""
+
+    def __init__(self, probe, course_node, driven, stopped, stop_within):
+        self.probe = probe              # on host A, beside the simulator: the cut does not touch it
+        self.course_node = course_node  # on host B
+        self.driven = driven            # values -> True while the course node's commands arrive
+        self.stopped = stopped          # values -> True once the simulator stopped the robot
+        self.stop_within = stop_within  # the simulator's command timeout, a tick, and a message
+
+
+def turtlesim_across(processes, hosts):
+    """roscore and turtlesim on host A, ros_exercises circle on host B."""
+    env_a, env_b = hosts.environment(hosts.a), hosts.environment(hosts.b)
+    start_master(processes, env_a, 11311, netns=hosts.a)
+    processes.start('turtlesim', ['rosrun', 'turtlesim', 'turtlesim_node'], env_a, netns=hosts.a)
+    probe = start_probe(processes, 'pose', env_a, '/turtle1/pose', POSE_FIELDS, netns=hosts.a)
+    circle = processes.start('circle', ['rosrun', 'ros_exercises', 'circle'], env_b, netns=hosts.b)
+    # turtlesim: 1.0 s without a command, then the next 16 ms tick publishes the stopped pose.
+    return RemoteControl(probe, circle, faults.circling, faults.stopped, 1.0 + 2 * 0.016 + 0.05)
+
+
+def fake_tb3_across(processes, hosts):
+    """roscore and fake_tb3 (cmd_vel_timeout 1.0 s) on host A, move_turtlebot3's avoid_obstacle.py
+    (0.5 m/s ahead while the way is free, a command per scan) on host B."""
+    env_a, env_b = hosts.environment(hosts.a), hosts.environment(hosts.b)
+    start_master(processes, env_a, 11311, netns=hosts.a)
+    processes.start('fake_tb3', ['roslaunch', 'fake_tb3', 'world.launch', 'cmd_vel_timeout:=1.0'],
+                    env_a, netns=hosts.a)
+    probe = start_probe(processes, 'odom', env_a, '/odom', ODOM_FIELDS, netns=hosts.a)
+    driver = processes.start('avoid_obstacle', ['rosrun', 'move_turtlebot3', 'avoid_obstacle.py'],
+                             env_b, netns=hosts.b)
+
+    def driven(values):
+        return abs(values['twist.twist.linear.x'] - 0.5) < 1e-6
+
+    def stopped(values):
+        return values['twist.twist.linear.x'] == 0.0 and values['twist.twist.angular.z'] == 0.0
+
+    # fake_tb3: 1.0 s without a command, a 10 ms physics step, then odom at 30 Hz.
+    return RemoteControl(probe, driver, driven, stopped, 1.0 + 0.010 + 1 / 30 + 0.05)
+
+
+def cut_and_restore(hosts, remote, how):
+    """Cut the link `how` while the robot is driven; returns (seconds from the cut until the robot
+    stopped, seconds from the link coming back until it was driven again). Checks that it stayed
+    still while the link was down."""
+    remote.probe.wait_for(remote.driven, DRIVEN_TIMEOUT, 'host B to drive the robot on host A')
+    cut = now()
+    hosts.cut(how)
+    try:
+        stopped = remote.probe.wait_for(remote.stopped, remote.stop_within + 5,
+                                        'the robot to stop after the cut')
+        time.sleep(0.5)  # the link stays down half a second longer: the robot must stay where it stopped
+        assert remote.probe.latest()['values'] == stopped['values'], (stopped, remote.probe.latest())
+    finally:
+        hosts.restore(how)
+    restored = now()
+    remote.probe.wait_for(remote.driven, RESUME_TIMEOUT, 'control to resume after the link came back')
+    return stopped['t'] - cut, now() - restored

@@ -17,6 +17,7 @@ import xmlrpc.client
 
 import rosgraph
 
+from course_common.processes import stop_process_group
 from course_common.testing import wait_until
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -83,14 +84,7 @@ class Process:
         found by parentage first and killed by PID if they outlive it.
         """
         family = descendants(self.popen.pid)
-        if self.running():
-            self.signal_group(signal.SIGINT)
-            try:
-                self.popen.wait(timeout)
-            except subprocess.TimeoutExpired:
-                self.signal_group(signal.SIGKILL)
-                self.popen.wait(10)
-        self.signal_group(signal.SIGKILL)  # children that outlived their parent
+        stop_process_group(self.popen, timeout)
         kill_pids(family)
         self._log.close()
         return self.popen.returncode
@@ -140,7 +134,8 @@ class Processes:
     def start(self, name, argv, env, netns=None, process_class=Process):
         if netns:
             argv = ['ip', 'netns', 'exec', netns] + list(argv)
-        process = process_class(name, argv, env, os.path.join(self.log_dir, '%s-%d.log' % (name, len(self.started))))
+        log_path = os.path.join(self.log_dir, '%s-%d.log' % (name, len(self.started)))
+        process = process_class(name, argv, env, log_path)
         self.started.append(process)
         return process
 
@@ -157,10 +152,18 @@ def master_is_online(uri):
     return rosgraph.Master('/network_test', master_uri=uri).is_online()
 
 
-def start_master(processes, env, port, name='roscore', netns=None, wait=True):
-    """roscore on `port` (env's ROS_MASTER_URI must name it); waits for it unless in a namespace."""
+# Polls, inside a network namespace, until the master of ROS_MASTER_URI answers.
+WAIT_FOR_MASTER = 'import rosgraph, time\nwhile not rosgraph.is_master_online():\n    time.sleep(0.1)\n'
+
+
+def start_master(processes, env, port, name='roscore', netns=None):
+    """roscore on `port` (env's ROS_MASTER_URI must name it); returns once the master answers."""
     master = processes.start(name, ['roscore', '-p', str(port)], env, netns=netns)
-    if wait:
+    if netns:
+        # The test's own namespace cannot reach it: ask from inside.
+        subprocess.run(['ip', 'netns', 'exec', netns, PYTHON, '-c', WAIT_FOR_MASTER], env=env,
+                       timeout=30, check=True)
+    else:
         wait_until(lambda: master_is_online(env['ROS_MASTER_URI']), 20, 'the master on port %d' % port)
     return master
 
@@ -179,8 +182,10 @@ def received_bytes(node_uri, topic):
     The message count of getBusStats is no measure of what arrived: rospy counts only the messages
     it keeps for the callback, and with queue_size=1 it drops all but the newest of each read.
     """
-    _code, _text, (_published, subscribed, _services) = xmlrpc.client.ServerProxy(node_uri).getBusStats('/network_test')
-    return sum(connection[1] for name, connections in subscribed if name == topic for connection in connections)
+    _code, _text, stats = xmlrpc.client.ServerProxy(node_uri).getBusStats('/network_test')
+    _published, subscribed, _services = stats
+    return sum(connection[1] for name, connections in subscribed if name == topic
+               for connection in connections)
 
 
 class Probe(Process):
@@ -195,6 +200,8 @@ class Probe(Process):
 
     def _read(self):
         for line in self.popen.stdout:
+            if not line.startswith('{'):  # rostopic's "not published yet" notice
+                continue
             record = json.loads(line)
             with self._lock:
                 self.messages.append(record)

@@ -1,5 +1,5 @@
-"""The load and bad-input scenarios, shared by the tests (which assert on what they return) and by
-bench/resilience.py (which prints it as a table).
+"""The security, load and bad-input scenarios, shared by the tests (which assert on what they
+return) and by bench/resilience.py (which prints it as tables).
 
 A scenario works on a Graph: a master, one simulator and probes on the simulator's output topics,
 started by `start_turtlesim` or `start_fake_tb3`. Each bad-input case is a function(graph) that
@@ -18,8 +18,8 @@ import rosgraph
 from rosgraph.network import encode_ros_handshake_header
 
 from course_common.testing import wait_until
-from rosnet import (HERE, PYTHON, free_port, node_api, now, project_environment, received_bytes,
-                    start_master, start_probe)
+from rosnet import (HERE, PYTHON, descendants, free_port, listening_sockets, node_api, now,
+                    project_environment, received_bytes, start_master, start_probe)
 
 TURTLESIM_POSE_HZ = 62.5
 FAKE_TB3_ODOM_HZ = 30.0
@@ -71,7 +71,7 @@ class Graph:
 
     def assert_obeys(self, speed=0.5):
         """A good command is obeyed (after bad ones: nothing stuck, nothing lost)."""
-        publisher = publish(self, 20, 2.0, '%r,0,0' % speed)
+        publisher = publish(self, 20, 1.0, '%r,0,0' % speed)
         self.main_probe.wait_for(lambda values: abs(values[self.speed_field] - speed) < 1e-6, 10,
                                  'the simulator to report %s m/s' % speed)
         flood_summary(publisher, 20)
@@ -98,7 +98,8 @@ def start_turtlesim(processes):
 
 def start_fake_tb3(processes, *launch_args):
     env, master = new_master(processes)
-    simulator = processes.start('fake_tb3', ['roslaunch', 'fake_tb3', 'world.launch'] + list(launch_args), env)
+    simulator = processes.start('fake_tb3', ['roslaunch', 'fake_tb3', 'world.launch'] + list(launch_args),
+                                env)
     odom = start_probe(processes, 'odom', env, '/odom', ODOM_FIELDS)
     scan = start_probe(processes, 'scan', env, '/scan')
     odom.wait_for_messages(1, timeout=30)
@@ -108,10 +109,23 @@ def start_fake_tb3(processes, *launch_args):
                  'twist.twist.linear.x')
 
 
+def listening_ros_sockets(processes):
+    """roscore (roslaunch, rosmaster, the C++ rosout), turtlesim and the pose probe (rospy) and
+    ros_exercises circle (roscpp), with the project's environment: [(program, [(address, port)])]
+    for each of their processes."""
+    graph = start_turtlesim(processes)
+    circle = processes.start('circle', ['rosrun', 'ros_exercises', 'circle'], graph.env)
+    for node in ('/circle', '/rosout'):
+        wait_until(lambda: node_api(graph.master_uri, node), 20, 'node %s to register' % node)
+    pids = ([graph.master.pid] + descendants(graph.master.pid)
+            + [graph.simulator.pid, graph.main_probe.pid, circle.pid])
+    return [(open('/proc/%d/comm' % pid).read().strip(), listening_sockets(pid)) for pid in pids]
+
+
 def publish(graph, rate, seconds, twists='1,0,1', topic=None):
     """Start flood.py on the graph's cmd_vel (or `topic`); returns the Process."""
-    return graph.processes.start('flood', [PYTHON, os.path.join(HERE, 'flood.py'), topic or graph.cmd_vel,
-                                           str(rate), str(seconds), twists], graph.env)
+    argv = [PYTHON, os.path.join(HERE, 'flood.py'), topic or graph.cmd_vel, str(rate), str(seconds), twists]
+    return graph.processes.start('flood', argv, graph.env)
 
 
 def flood_summary(flood, timeout):
@@ -138,20 +152,36 @@ def flood(graph, rate=FLOOD_RATE, seconds=3.0, twists='1,0,1'):
     summary = flood_summary(publisher, seconds + 20)
     result = {'published_hz': summary['sent'] / summary['seconds'],
               'received_hz': (last - first) / TWIST_WIRE_BYTES / (end - start)}
-    for topic, (probe, _) in graph.probes.items():
-        result[topic] = probe.rate(start, end)
-        result[topic + ' max gap'] = probe.max_gap(start, end)
+    result.update(probed_rates(graph, start, end))
     return result
+
+
+def probed_rates(graph, start, end):
+    """{topic: rate, topic + ' max gap': seconds} of every probed topic in [start, end)."""
+    rates = {}
+    for topic, (probe, _) in graph.probes.items():
+        rates[topic] = probe.rate(start, end)
+        rates[topic + ' max gap'] = probe.max_gap(start, end)
+    return rates
+
+
+def quiet_rates(graph, seconds=1.5):
+    """Rates and longest gaps of every probed topic over the next `seconds`, nothing else going on."""
+    start = now()
+    slowest, slowest_rate = min(graph.probes.values(), key=lambda probe_and_rate: probe_and_rate[1])
+    slowest.wait_for_messages(int(seconds * slowest_rate) + 1, timeout=seconds + 5)
+    return probed_rates(graph, start, now())
 
 
 # --- bad inputs: each returns one line for the table, or raises AssertionError ------------------
 def non_finite_commands(graph):
     """NaN, +-inf in every field and overflowing finite values, 1000 a second for a second."""
+    warnings_before = graph.simulator.log().count('finite')
     summary = flood_summary(publish(graph, 1000, 1.0, NON_FINITE_TWISTS), 30)
     assert summary['subscribers'] >= 1, summary
     graph.assert_alive()
     log = graph.simulator.log()
-    assert 'finite' in log, 'no warning about the non-finite commands:\n' + log[-2000:]
+    assert log.count('finite') > warnings_before, 'no warning about the non-finite commands:\n' + log[-2000:]
     graph.assert_obeys()
     return '%d sent: warned, ignored, obeys the next good one' % summary['sent']
 
@@ -163,6 +193,7 @@ def wrong_type_on_cmd_vel(graph):
     wait_until(lambda: 'md5sum' in publisher.log() or not publisher.running(), 20,
                'rostopic pub to report the type mismatch')
     publisher.stop()
+    assert 'md5sum' in publisher.log(), publisher.log()[-2000:]
     graph.assert_alive()
     graph.assert_obeys()
     return 'connection refused (md5sum mismatch), obeys the next good command'
@@ -298,8 +329,9 @@ def odd_turtle_names(graph):
     assert all(result['ok'] for result in killed[len(KILL_NAMES):]), killed
     graph.assert_alive()
     graph.assert_obeys()
-    return '%d names refused with a clear error, %d odd-but-valid spawned and killed, %d unknown kills refused' % (
-        len(SPAWN_NAMES) - len(new_turtles) + 1, len(new_turtles), len(KILL_NAMES))
+    return ('%d names refused with a clear error, %d odd-but-valid spawned and killed, '
+            '%d unknown kills refused' % (len(SPAWN_NAMES) - len(new_turtles) + 1, len(new_turtles),
+                                          len(KILL_NAMES)))
 
 
 def wrong_service_fields(graph):
@@ -307,6 +339,19 @@ def wrong_service_fields(graph):
     typed = [('/spawn', '{nonsense: 1}'), ('/kill', '{name: [1, 2]}'), ('/spawn', '[1.0]')]
     results = [graph.tool(['rosservice', 'call', service, arguments]) for service, arguments in typed]
     for (service, arguments), result in zip(typed, results):
-        assert result.returncode != 0 and 'ERROR' in result.stdout.upper(), (service, arguments, result.stdout)
+        assert result.returncode != 0 and 'ERROR' in result.stdout.upper(), (service, arguments,
+                                                                             result.stdout)
     graph.assert_alive()
     return 'rosservice refused all %d with an error; node untouched' % len(typed)
+
+
+COMMON_BAD_INPUTS = [('non-finite cmd_vel', non_finite_commands),
+                     ('String on cmd_vel', wrong_type_on_cmd_vel),
+                     ('TCPROS junk', garbage_on_topic_port),
+                     ('XML-RPC junk', garbage_xmlrpc)]
+TURTLESIM_BAD_INPUTS = COMMON_BAD_INPUTS + [
+    ('raw /spawn junk', lambda graph: garbage_service_calls(graph, '/spawn')),
+    ('rosservice wrong fields', wrong_service_fields),
+    ('odd spawn/kill names', odd_turtle_names)]
+FAKE_TB3_BAD_INPUTS = COMMON_BAD_INPUTS + [
+    ('raw save_picture junk', lambda graph: garbage_service_calls(graph, '/fake_tb3/save_picture'))]

@@ -2,7 +2,6 @@
 """Starting and stopping turtlesim: silent headless start, clean Ctrl-C, the canvas saved at shutdown
 by the demo launch file, the window under Xvfb, and multisim.launch."""
 import os
-import re
 import signal
 import subprocess
 import tempfile
@@ -12,6 +11,7 @@ import rospy
 import rostest
 from PIL import Image as PilImage
 
+from course_common.screen import VirtualScreen
 from course_common.testing import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import SetPen, TeleportAbsolute
@@ -44,43 +44,10 @@ def wait_for_service(name):
     rospy.wait_for_service(name, 20.0)
 
 
-class Xvfb:
-    """A virtual screen on the first free display number."""
-
-    def __init__(self):
-        for number in range(91, 200):
-            if os.path.exists('/tmp/.X%d-lock' % number) or os.path.exists('/tmp/.X11-unix/X%d' % number):
-                continue
-            self.process = subprocess.Popen(['Xvfb', ':%d' % number, '-screen', '0', '640x560x24', '-nolisten', 'tcp'],
-                                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-            self.display = ':%d' % number
-            try:
-                wait_until(lambda: os.path.exists('/tmp/.X11-unix/X%d' % number) or self.process.poll() is not None,
-                           10.0, 'Xvfb on %s' % self.display)
-            except AssertionError:
-                self.stop()
-                raise
-            if self.process.poll() is None:
-                return
-        raise AssertionError('no free X display number for Xvfb')
-
-    def window_id(self, title):
-        """The id of the window with this title (xwininfo), or None if there is none."""
-        result = subprocess.run(['xwininfo', '-name', title], env=dict(os.environ, DISPLAY=self.display),
-                                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
-        match = re.search(r'Window id: (0x[0-9a-f]+)', result.stdout)
-        return match.group(1) if result.returncode == 0 and match else None
-
-    def screenshot(self, window, path):
-        """`import -window <window>` (an id or 'root') into a PNG; returns the RGB picture."""
-        subprocess.run(['import', '-window', window, path], env=dict(os.environ, DISPLAY=self.display),
-                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True, timeout=20)
-        with PilImage.open(path) as image:
-            return image.convert('RGB')
-
-    def stop(self):
-        self.process.terminate()
-        self.process.wait(10)
+def screenshot(screen, path, window='root'):
+    """The screen (or one window) as an RGB picture."""
+    with PilImage.open(screen.screenshot(path, window)) as image:
+        return image.convert('RGB')
 
 
 def count(image, colour):
@@ -139,8 +106,7 @@ class LifecycleTest(unittest.TestCase):
             self.assertFalse(registered('/turtlesim'))
 
     def test_window_under_xvfb_shows_the_trail(self):
-        screen = Xvfb()
-        self.addCleanup(screen.stop)
+        screen = self.enterContext(VirtualScreen(640, 560))
         with tempfile.TemporaryDirectory() as folder:
             shot = os.path.join(folder, 'screen.png')
             sim = self.start(['rosrun', 'turtlesim', 'turtlesim_node', '__ns:=windowed'], DISPLAY=screen.display)
@@ -148,9 +114,9 @@ class LifecycleTest(unittest.TestCase):
             rospy.ServiceProxy('/windowed/turtle1/set_pen', SetPen)(*MAGENTA, 5, 0)
             rospy.ServiceProxy('/windowed/turtle1/teleport_absolute', TeleportAbsolute)(2.0, 2.0, 1.0)
             # the trail from the centre to (2, 2) m is about 226 px long and 5 px wide
-            wait_until(lambda: count(screen.screenshot('root', shot), MAGENTA) > 800, 20.0,
+            wait_until(lambda: count(screenshot(screen, shot), MAGENTA) > 800, 20.0,
                        'the magenta trail on the screen')
-            window = screen.screenshot(screen.window_id('TurtleSim'), shot)
+            window = screenshot(screen, shot, screen.window_id('TurtleSim'))
             self.assertEqual(window.size, (500, 500))
             self.assertEqual(window.getpixel((480, 20)), BACKGROUND)
             code, _, err = interrupt(sim)

@@ -1,5 +1,6 @@
 """A virtual X screen (Xvfb) for windows that tests and the tour look at, and screenshots of it."""
 import os
+import re
 import shutil
 import subprocess
 
@@ -40,8 +41,19 @@ class VirtualScreen:
         """A copy of the environment (default os.environ) whose programs draw on this screen."""
         return dict(os.environ if base is None else base, DISPLAY=self.display)
 
-    def screenshot(self, path):
-        """Write the whole screen as PNG to path and return path."""
-        subprocess.run(['import', '-display', self.display, '-window', 'root', path], check=True,
+    def screenshot(self, path, window='root'):
+        """Write the whole screen (or one window, by id) as PNG to path and return path."""
+        subprocess.run(['import', '-display', self.display, '-window', window, path], check=True,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, timeout=30)
         return path
+
+    def window_id(self, title):
+        """The id of the window with this title, or None while there is none.
+
+        Asked of xwininfo, because `import -window <title>` waits for ever for a missing window.
+        """
+        result = subprocess.run(['xwininfo', '-display', self.display, '-name', title],
+                                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                                universal_newlines=True, timeout=30)
+        match = re.search(r'Window id: (0x[0-9a-f]+)', result.stdout)
+        return match.group(1) if result.returncode == 0 and match else None

@@ -1,7 +1,20 @@
+import subprocess
+import sys
+
 import numpy as np
 from PIL import Image
 
 from course_common.screen import VirtualScreen, can_make_screens
+from course_common.testing import wait_until
+
+RED_WINDOW = """
+import tkinter
+window = tkinter.Tk()
+window.title('probe')
+window.geometry('100x80')
+window.configure(background='red')
+window.mainloop()
+"""
 
 
 def test_the_tools_for_screens_are_installed():
@@ -15,3 +28,19 @@ def test_a_virtual_screen_is_black_and_of_the_size_asked(tmp_path):
         picture = np.asarray(Image.open(screen.screenshot(str(tmp_path / 'screen.png'))).convert('RGB'))
     assert picture.shape == (200, 320, 3)
     assert picture.max() == 0
+
+
+def test_a_window_is_found_by_its_title_and_shot_alone(tmp_path):
+    with VirtualScreen(320, 200) as screen:
+        assert screen.window_id('probe') is None
+        window = subprocess.Popen([sys.executable, '-c', RED_WINDOW], env=screen.environment(),
+                                  start_new_session=True)
+        try:
+            found = wait_until(lambda: screen.window_id('probe'), 20, what='the probe window')
+            shot = Image.open(screen.screenshot(str(tmp_path / 'window.png'), window=found))
+            picture = np.asarray(shot.convert('RGB'))
+        finally:
+            window.kill()  # Tk's mainloop would notice a SIGINT only at its next event
+            window.wait()
+    assert picture.shape == (80, 100, 3)
+    assert (picture == (255, 0, 0)).all(axis=2).mean() > 0.9

@@ -92,8 +92,9 @@ class RobotInterface:
     def on_cmd_vel(self, twist):
         linear, angular = twist.linear.x, twist.angular.z
         if not (math.isfinite(linear) and math.isfinite(angular)):
-            rospy.logwarn('%s: ignoring cmd_vel with a non-finite velocity '
-                          '(linear.x %s, angular.z %s)', self.label, linear, angular)
+            # At most one line a second: a flood of bad commands must not flood the log too.
+            rospy.logwarn_throttle(1.0, '%s: ignoring cmd_vel with a non-finite velocity '
+                                   '(linear.x %s, angular.z %s)' % (self.label, linear, angular))
             return
         if self.node.clamp_speed:
             model = self.robot.model
