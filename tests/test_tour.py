@@ -1,0 +1,79 @@
+"""The README's demo: the tour runs every lab, summarises it, and writes real pictures."""
+import os
+import re
+import subprocess
+
+import numpy
+import pytest
+from PIL import Image
+
+TURTLESIM_BACKGROUND = (69, 86, 255)
+PEN = (179, 184, 255)
+
+
+@pytest.fixture(scope='module')
+def tour(tmp_path_factory):
+    output = tmp_path_factory.mktemp('tour')
+    result = subprocess.run(['rosrun', 'course_tour', 'course_tour', '--output', str(output)],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            universal_newlines=True, timeout=900)
+    return result, output
+
+
+def picture(output, name):
+    with Image.open(os.path.join(str(output), name)) as image:
+        return numpy.asarray(image.convert('RGB')).astype(int)
+
+
+def pixels_of(image, colour):
+    return int(numpy.all(image == colour, axis=2).sum())
+
+
+def test_every_lab_ran_and_the_tour_says_where_its_pictures_are(tour):
+    result, output = tour
+    assert result.returncode == 0, result.stdout
+    for number, lab in enumerate(['square', 'turtle', 'teleop', 'report', 'laser', 'avoid', 'rviz'], 1):
+        assert re.search(r'^\[%d/7\] %s: .* \.\.\.$' % (number, lab), result.stdout, re.M)
+    assert 'FAILED' not in result.stdout
+    assert result.stdout.rstrip().endswith('Pictures and logs are in %s' % output)
+
+
+def test_the_summary_gives_distances_stop_distance_and_no_collision(tour):
+    summary = tour[0].stdout.split('\nSummary\n')[1]
+    driven = float(re.search(r'turtle1 drove ([\d.]+) m along \+x', summary).group(1))
+    assert driven >= 2.0
+    assert re.search(r'my_turtle_pose printed (\d+) pose lines', summary)
+    assert re.search(r'square of 3 m sides: 12\.\d\d m driven, closed within 0\.0[0-4]\d m', summary)
+    assert re.search(r'triangle of 3 m sides: 9\.\d\d m driven, closed within 0\.0[0-4]\d m', summary)
+    stop = float(re.search(r'stopped ([\d.]+) m from the wall; collisions: 0', summary).group(1))
+    assert 0.35 <= stop <= 0.5
+    wandered = float(re.search(r'wander.py drove ([\d.]+) m in 120 simulated seconds .*; collisions: 0',
+                               summary).group(1))
+    assert wandered > 10.0
+    assert re.search(r'laser_data printed \d+ scans; the last: front \S+', summary)
+
+
+@pytest.mark.parametrize('name', ['turtlesim-square.png', 'my_turtle-forward.png', 'my_turtle-teleop.png',
+                                  'ros_exercises-square.png', 'ros_exercises-triangle.png'])
+def test_turtle_canvases_are_500_px_squares_with_a_trail(tour, name):
+    image = picture(tour[1], name)
+    assert image.shape == (500, 500, 3)
+    assert pixels_of(image, TURTLESIM_BACKGROUND) > 0.9 * 500 * 500
+    assert pixels_of(image, PEN) > 200  # a 3 px pen over more than a metre (45 px/m)
+
+
+def test_the_top_down_view_shows_the_world_and_a_long_trail(tour):
+    image = picture(tour[1], 'move_turtlebot3-wander.png')
+    assert image.shape[0] > 300 and image.shape[1] > 300
+    colours = {tuple(c) for c in image.reshape(-1, 3)[::97]}
+    assert len(colours) > 4  # floor, walls, trail, robot, scan
+    trail = (image[:, :, 2] > 150) & (image[:, :, 0] < 120)  # blue
+    laser = (image[:, :, 0] > 200) & (image[:, :, 1] < 60) & (image[:, :, 2] < 60)
+    assert trail.sum() > 300 and laser.sum() > 50
+
+
+def test_the_rviz_screenshot_shows_red_laser_points(tour):
+    image = picture(tour[1], 'rviz.png')
+    assert image.shape == (1024, 1280, 3)
+    red = (image[:, :, 0] > 200) & (image[:, :, 1] < 60) & (image[:, :, 2] < 60)
+    assert red.sum() > 300
