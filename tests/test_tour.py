@@ -14,7 +14,7 @@ PEN = (179, 184, 255)
 @pytest.fixture(scope='module')
 def tour(tmp_path_factory):
     output = tmp_path_factory.mktemp('tour')
-    result = subprocess.run(['rosrun', 'course_tour', 'course_tour', '--output', str(output)],
+    result = subprocess.run(['rosrun', 'course_tour', 'tour', '--output', str(output)],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                             universal_newlines=True, timeout=900)
     return result, output

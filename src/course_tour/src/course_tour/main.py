@@ -1,4 +1,5 @@
-"""`course_tour [LAB ...]`: run the course's labs headless, one after the other, and summarise them."""
+"""`rosrun course_tour tour [LAB ...]`, what ./demo.sh runs: the course's labs, headless, one after
+the other, and a summary of what each did."""
 import argparse
 import datetime
 import os
@@ -13,7 +14,7 @@ from course_tour.session import Session
 def parse_args(argv):
     names = [lab.name for lab in LABS]
     parser = argparse.ArgumentParser(
-        prog='course_tour', description='Run the labs of the course headless and summarise them.')
+        prog='./demo.sh', description='Run the labs of the course headless and summarise them.')
     parser.add_argument('labs', nargs='*', metavar='LAB',
                         help='labs to run (default: all): %s' % ', '.join(names))
     parser.add_argument('--output', metavar='DIR',
