@@ -47,6 +47,8 @@ def main(argv=None):
                 results.append((lab, None, str(error)))
                 print('      FAILED after %.0f s: %s' % (time.monotonic() - start, error), flush=True)
                 continue
+            finally:
+                session.stop_all()  # nothing of one lab may run into the next
             results.append((lab, report, None))
             print('      done in %.0f s' % (time.monotonic() - start), flush=True)
 

@@ -18,6 +18,9 @@ from course_common.processes import stop_process_group
 from course_common.testing import wait_until
 
 
+ROSCORE_PARAMS = {'/run_id', '/rosdistro', '/rosversion'}
+
+
 def free_port():
     with socket.socket() as probe:
         probe.bind(('127.0.0.1', 0))
@@ -88,12 +91,13 @@ class Session:
                                 os.path.join(self.log_dir, 'roscore.log'), self.env)
         master = rosgraph.Master('/course_tour')
         wait_until(master.is_online, 30, what='the ROS master of the tour')
+        # roscore sets /run_id a moment after the master answers; `roslaunch --wait` waits for it.
+        wait_until(lambda: master.hasParam('/run_id'), 30, what='roscore to set /run_id')
         rospy.init_node('course_tour', disable_signals=True)
         return self
 
     def __exit__(self, *exc):
-        for launched in reversed(self._launched):
-            launched.stop()
+        self.stop_all()
         rospy.signal_shutdown('tour finished')
         self._master.stop()
         return False
@@ -114,12 +118,18 @@ class Session:
     def stop(self, launched):
         """Stop a launch and remove the parameters that came with it: the master outlives the
         lab, and a simulator started later must not find (say) an old ~canvas_png and write its
-        picture over an earlier lab's."""
+        picture over an earlier lab's. roscore's own parameters stay, whenever they appeared."""
         launched.stop()
         self._launched.remove(launched)
         for name in set(rospy.get_param_names()) - launched.params_before:
-            if rospy.has_param(name):
+            if name not in ROSCORE_PARAMS and not name.startswith('/roslaunch/') \
+                    and rospy.has_param(name):
                 rospy.delete_param(name)
+
+    def stop_all(self):
+        """Stop whatever a lab left running (a lab that failed half way), newest first."""
+        for launched in reversed(list(self._launched)):
+            self.stop(launched)
 
     @staticmethod
     def wait_until(condition, timeout, what):
