@@ -5,6 +5,23 @@
 set -uo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 cd "$ROOT"
+# The folder of a package of this workspace, by name.
+package_dir() {
+    local xml
+    xml=$(grep -l "<name>$1</name>" "$ROOT"/src/*/package.xml "$ROOT"/src/*/*/package.xml | head -n1)
+    [ -n "$xml" ] && dirname "$xml"
+}
+
+if [ $# -gt 0 ]; then
+    packages=("$@")
+    for pkg in "${packages[@]}"; do
+        package_dir "$pkg" > /dev/null || {
+            echo "test: no package named $pkg here; the packages are:" $(catkin_topological_order --only-names "$ROOT/src") >&2
+            exit 2; }
+    done
+else
+    mapfile -t packages < <(catkin_topological_order --only-names "$ROOT/src")
+fi
 "$ROOT/tools/setup.sh" || exit 1
 # shellcheck disable=SC1091
 source "$ROOT/tools/env.sh"
@@ -15,16 +32,13 @@ rm -rf "$RESULTS"
 mkdir -p "$RESULTS/pytest"
 export DISPLAY=   # the tests start their own Xvfb where they need a screen
 
-if [ $# -gt 0 ]; then packages=("$@"); else
-    mapfile -t packages < <(catkin_topological_order --only-names "$ROOT/src")
-fi
 step_failures=()
 
 # 1. Pure tests: no master, milliseconds each. One pytest per folder, so that test modules of the
 #    same name in two packages (test_world.py) do not meet.
 unit_dirs=()
 for pkg in "${packages[@]}"; do
-    dir=$(dirname "$(grep -l "<name>$pkg</name>" "$ROOT"/src/*/package.xml "$ROOT"/src/*/*/package.xml 2>/dev/null | head -n1)")
+    dir=$(package_dir "$pkg")
     [ -d "$dir/test/unit" ] && unit_dirs+=("$dir/test/unit")
 done
 [ $# -eq 0 ] && unit_dirs+=("$ROOT/tests")
@@ -45,28 +59,24 @@ for dir in "${unit_dirs[@]}"; do
 done
 
 # 2. rostests, one after the other (each starts its own master on a free port).
-catkin_args=(--directory "$ROOT" --build "$BASE/build" -DCATKIN_DEVEL_PREFIX="$BASE/devel"
-             -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCATKIN_WHITELIST_PACKAGES="${CATKIN_WHITELIST:-}")
 if [ $# -gt 0 ]; then
     targets=()  # a package gets a run_tests_<pkg> target only when it registers tests
     for pkg in "${packages[@]}"; do
-        dir=$(dirname "$(grep -l "<name>$pkg</name>" "$ROOT"/src/*/package.xml "$ROOT"/src/*/*/package.xml | head -n1)")
-        grep -q add_rostest "$dir/CMakeLists.txt" && targets+=("run_tests_$pkg")
+        grep -q add_rostest "$(package_dir "$pkg")/CMakeLists.txt" && targets+=("run_tests_$pkg")
     done
 else targets=(run_tests); fi
 echo "test: rostest (${targets[*]})"
-if ! catkin_make "${catkin_args[@]}" tests -j2 > "$BASE/build/test_build.log" 2>&1; then
+if ! "$ROOT/tools/setup.sh" --make tests -j2 > "$BASE/build/test_build.log" 2>&1; then
     tail -n 40 "$BASE/build/test_build.log"; step_failures+=("building the tests")
 fi
 # One line per .test file, and rostest's own lines about failures.
 if [ ${#targets[@]} -gt 0 ]; then
-    catkin_make "${catkin_args[@]}" "${targets[@]}" -j1 > "$BASE/build/rostest.log" 2>&1 &
+    "$ROOT/tools/setup.sh" --make "${targets[@]}" -j1 > "$BASE/build/rostest.log" 2>&1 &
     tail --pid=$! -n +1 -f "$BASE/build/rostest.log" | awk '
         /\/usr\/bin\/rostest / { file = $NF; sub(".*/src/", "", file); print "test: rostest " file; fflush(); next }
         /RESULT: FAIL|\[FAILURE\]|\[ERROR\] \[Testcase/ { print "      " $0; fflush() }'
     wait $! || step_failures+=("running the rostests (see $BASE/build/rostest.log)")
 fi
-
 
 # 3. One count over everything that ran.
 /usr/bin/python3 "$ROOT/tools/count_results.py" "$RESULTS" "${step_failures[@]}"

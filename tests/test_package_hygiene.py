@@ -45,3 +45,19 @@ def test_python_has_no_unused_imports_or_undefined_names():
     result = subprocess.run(['/usr/bin/python3', '-m', 'pyflakes'] + sources,
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
     assert result.returncode == 0, result.stdout
+
+
+def test_test_command_refuses_an_unknown_package_before_doing_anything():
+    result = subprocess.run([os.path.join(ROOT, 'test.sh'), 'no_such_package'],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
+    assert result.returncode == 2
+    assert result.stdout.startswith('test: no package named no_such_package here; the packages are:')
+    assert ' turtlesim ' in result.stdout
+
+
+def test_demo_help_lists_the_labs():
+    result = subprocess.run([os.path.join(ROOT, 'demo.sh'), '--help'], stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, universal_newlines=True)
+    assert result.returncode == 0, result.stdout
+    assert 'usage: ./demo.sh [-h] [--output DIR] [LAB ...]' in result.stdout
+    assert 'square, turtle, teleop, report, laser, avoid, rviz' in ' '.join(result.stdout.split())

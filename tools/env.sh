@@ -2,12 +2,18 @@
 # the workspace: ROS environment of the devel space, Debian's python3 first, ROS sockets on loopback.
 _course_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
-# devel/setup.bash reads unset variables: callers running with `set -u` must not abort in it.
-_course_nounset=$(set -o | awk '$1 == "nounset" {print $2}')
-set +u
-# shellcheck disable=SC1091
-source "${CATKIN_BUILD_BASE:-$_course_root}/devel/setup.bash"
-[ "$_course_nounset" = on ] && set -u
+# devel/setup.bash reads unset variables (callers running with `set -u` must not abort in it) and
+# hands its arguments to catkin: sourced from a function, it sees none of the caller's (./demo.sh --help).
+_course_source_devel() {
+    local nounset
+    nounset=$(set -o | awk '$1 == "nounset" {print $2}')
+    set +u
+    # shellcheck disable=SC1091
+    source "${CATKIN_BUILD_BASE:-$_course_root}/devel/setup.bash"
+    [ "$nounset" = on ] && set -u
+    return 0
+}
+_course_source_devel
 # By default nothing is reachable from other machines: master and nodes listen on loopback.
 # For two machines set ROS_MASTER_URI and ROS_IP yourself (README: "Two machines"); ROS_IP then
 # wins over the ROS_HOSTNAME=localhost that an earlier sourcing of this file left in the shell.
@@ -28,4 +34,5 @@ if [ -f "$_course_loopback" ]; then
 fi
 export ROS_MASTER_URI="${ROS_MASTER_URI:-http://localhost:11311}"
 export PYTHONNOUSERSITE=1
-unset _course_root _course_nounset _course_loopback
+unset -f _course_source_devel
+unset _course_root _course_loopback

@@ -2,7 +2,10 @@
 # Installs the Debian packages the workspace needs (only the missing ones) and builds it.
 #
 # Idempotent: with everything installed and nothing changed it only re-runs catkin_make (a few seconds).
-# Usage: tools/setup.sh [--install-only]
+# Usage: tools/setup.sh                  install what is missing, then build
+#        tools/setup.sh --install-only   only install
+#        tools/setup.sh --make TARGET... catkin_make of those targets (tests, run_tests, ...) in the
+#                                        same build, output to stdout (for test.sh)
 # Environment:
 #   CATKIN_BUILD_BASE   folder that receives build/ and devel/ (default: the repository root)
 #   CATKIN_WHITELIST    ';'-separated packages to build (default: all of them)
@@ -34,21 +37,25 @@ install_missing() {
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends $missing
 }
 
-build() {
-    local base="${CATKIN_BUILD_BASE:-$ROOT}"
-    local args=(--directory "$ROOT" --build "$base/build"
-                -DCATKIN_DEVEL_PREFIX="$base/devel" -DCMAKE_INSTALL_PREFIX="$base/install"
-                -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release
-                -DCATKIN_WHITELIST_PACKAGES="${CATKIN_WHITELIST:-}")
-    echo "setup: building the workspace (catkin_make) into $base"
-    if ! catkin_make "${args[@]}" -j2 > "$base/catkin_make.log" 2>&1; then
-        tail -n 60 "$base/catkin_make.log" >&2
-        echo "setup: catkin_make failed; the whole log is $base/catkin_make.log" >&2
-        exit 1
-    fi
+BASE="${CATKIN_BUILD_BASE:-$ROOT}"
+workspace_make() {
+    catkin_make --directory "$ROOT" --build "$BASE/build" \
+        -DCATKIN_DEVEL_PREFIX="$BASE/devel" -DCMAKE_INSTALL_PREFIX="$BASE/install" \
+        -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release \
+        -DCATKIN_WHITELIST_PACKAGES="${CATKIN_WHITELIST:-}" "$@"
 }
 
+if [ "${1:-}" = --make ]; then
+    shift
+    workspace_make "$@"
+    exit
+fi
 [ "${COURSE_SKIP_INSTALL:-0}" = 1 ] || install_missing
 [ "${1:-}" = --install-only ] && exit 0
-mkdir -p "${CATKIN_BUILD_BASE:-$ROOT}"
-build
+mkdir -p "$BASE"
+echo "setup: building the workspace (catkin_make) into $BASE"
+if ! workspace_make -j2 > "$BASE/catkin_make.log" 2>&1; then
+    tail -n 60 "$BASE/catkin_make.log" >&2
+    echo "setup: catkin_make failed; the whole log is $BASE/catkin_make.log" >&2
+    exit 1
+fi

@@ -1,1 +1,1 @@
-"""Helpers shared by the course's packages (no ROS imports here)."""
+"""Helpers shared by the course's packages (no rospy here: simulator cores and tests use them)."""

@@ -3,10 +3,13 @@
 The teleops read one byte at a time from a terminal in raw mode, as the ROS originals do, so that a
 key acts the moment it is pressed. Without a terminal (roslaunch without a console, CI, `docker run`
 without -t) there is nothing to read from: KeyReader raises NoTerminalError with one sentence the
-teleop prints before it exits.
+teleop prints before it exits. teleop_keys() wraps KeyReader with the rest of the terminal side
+every teleop shares.
 """
+import contextlib
 import os
 import select
+import signal
 import sys
 import termios
 import tty
@@ -60,6 +63,28 @@ class KeyReader:
         if not data:
             raise EOFError('the terminal was closed')
         return data.decode('latin-1')
+
+
+@contextlib.contextmanager
+def teleop_keys(program):
+    """KeyReader for a teleop's key loop, with the terminal side every keyboard teleop shares.
+
+    - Without a terminal: prints NoTerminalError's sentence on stderr and exits with status 1.
+    - Closing the terminal window sends SIGHUP, which would end the program on the spot (no
+      clean shutdown, no stop command): it is turned into SIGINT, so the program ends as after
+      Ctrl-C in a shell (for a ROS node, rospy's SIGINT handler shuts the node down cleanly).
+    - The terminal going away during a read or a write (EOFError, or EIO as OSError) ends the
+      key loop, as a quit key does.
+    """
+    signal.signal(signal.SIGHUP, lambda *_: os.kill(os.getpid(), signal.SIGINT))
+    try:
+        with KeyReader(program) as keys:
+            yield keys
+    except NoTerminalError as error:
+        sys.stderr.write('%s\n' % error)
+        sys.exit(1)
+    except (EOFError, OSError):
+        pass  # the terminal went away: nothing more to read or show
 
 
 def write_line(text, stream=None):

@@ -1,7 +1,16 @@
-"""Stopping what a test, the tour or a launch helper started."""
+"""Starting and stopping what a test, a benchmark or the tour runs beside the user's programs."""
 import os
 import signal
+import socket
 import subprocess
+
+
+def free_port():
+    """A TCP port that is free on loopback now: for a private master, so that we never meet (or
+    take) one the user runs on 11311."""
+    with socket.socket() as probe:
+        probe.bind(('127.0.0.1', 0))
+        return probe.getsockname()[1]
 
 
 def stop_process_group(process, timeout=15.0):

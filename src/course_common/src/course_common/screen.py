@@ -4,6 +4,16 @@ import re
 import shutil
 import subprocess
 
+import numpy
+from PIL import Image
+
+
+def red_pixels(path):
+    """How many pixels of a PNG are pure-ish red: rviz's laser points, fake_tb3's scan."""
+    with Image.open(path) as image:
+        rgb = numpy.asarray(image.convert('RGB')).astype(int)
+    return int(numpy.sum((rgb[:, :, 0] > 200) & (rgb[:, :, 1] < 60) & (rgb[:, :, 2] < 60)))
+
 
 def can_make_screens():
     """True when Xvfb and ImageMagick's `import` are installed (tools/debian-packages.txt lists them)."""

@@ -1,4 +1,7 @@
 import io
+import os
+import signal
+import subprocess
 import sys
 
 import pytest
@@ -57,5 +60,39 @@ def test_leaving_raw_mode_after_the_terminal_is_gone_is_not_an_error():
     try:
         assert program.process.wait(10) == 0
         assert 'left cleanly' in program.read_available()
+    finally:
+        program.stop()
+
+
+TELEOP = '''
+import signal, sys
+from course_common.keyboard import teleop_keys, write_line
+signal.signal(signal.SIGINT, lambda *_: write_line('interrupted'))  # as rospy's handler would shut down
+with teleop_keys('teleop') as keys:
+    write_line('ready')
+    while keys.read(5.0) != 'q':
+        pass
+'''
+
+
+def test_teleop_keys_without_a_terminal_prints_one_sentence_and_exits_1():
+    result = subprocess.run([sys.executable, '-c', TELEOP], stdin=subprocess.DEVNULL,
+                            capture_output=True, text=True, timeout=30)
+    assert result.returncode == 1
+    assert result.stdout == ''
+    assert result.stderr.startswith('teleop reads the keyboard, but its standard input is not a')
+    assert len(result.stderr.splitlines()) == 1
+
+
+def test_teleop_keys_turns_a_hang_up_into_sigint_and_the_lost_terminal_into_a_quit():
+    program = PtyProgram([sys.executable, '-c', TELEOP])
+    try:
+        program.wait_for_output('ready', 10)
+        program.process.send_signal(signal.SIGHUP)
+        program.wait_for_output('interrupted', 5)
+        assert program.process.poll() is None  # SIGINT's handler ran instead of SIGHUP killing it
+        os.close(program._fd)  # the terminal window goes away: the next read fails
+        program._fd = os.open(os.devnull, os.O_RDONLY)  # (so that stop() has something to close)
+        assert program.process.wait(10) == 0  # the key loop ended without a traceback
     finally:
         program.stop()

@@ -1,7 +1,8 @@
+import socket
 import subprocess
 import sys
 
-from course_common.processes import stop_process_group
+from course_common.processes import free_port, stop_process_group
 
 TRAPS_SIGINT = '''
 import signal, sys, time
@@ -37,3 +38,11 @@ def test_stopping_a_finished_program_returns_its_exit_code():
     process = subprocess.Popen([sys.executable, '-c', 'raise SystemExit(3)'], start_new_session=True)
     process.wait()
     assert stop_process_group(process) == 3
+
+
+def test_a_free_port_can_be_listened_on():
+    port = free_port()
+    assert 1024 < port < 65536
+    with socket.socket() as server:
+        server.bind(('127.0.0.1', port))
+        server.listen()

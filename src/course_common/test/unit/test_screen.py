@@ -4,7 +4,7 @@ import sys
 import numpy as np
 from PIL import Image
 
-from course_common.screen import VirtualScreen, can_make_screens
+from course_common.screen import VirtualScreen, can_make_screens, red_pixels
 from course_common.testing import wait_until
 
 RED_WINDOW = """
@@ -44,3 +44,12 @@ def test_a_window_is_found_by_its_title_and_shot_alone(tmp_path):
             window.wait()
     assert picture.shape == (80, 100, 3)
     assert (picture == (255, 0, 0)).all(axis=2).mean() > 0.9
+
+
+def test_red_pixels_counts_only_laser_red(tmp_path):
+    picture = np.zeros((10, 20, 3), dtype=np.uint8)
+    picture[2, :7] = (255, 0, 0)
+    picture[5, :3] = (230, 40, 30)
+    picture[7, :] = (255, 120, 120)  # pink is not red
+    Image.fromarray(picture).save(str(tmp_path / 'red.png'))
+    assert red_pixels(str(tmp_path / 'red.png')) == 10

@@ -13,12 +13,12 @@ from std_msgs.msg import UInt32
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill
 
-from course_common.screen import VirtualScreen, can_make_screens
-from course_common.testing import PtyProgram
+from course_common.screen import VirtualScreen, can_make_screens, red_pixels
+from course_common.testing import PtyProgram, wait_until
 from course_tour.session import Recorder, path_length
 
 LabReport = collections.namedtuple('LabReport', 'lines pictures')
-Lab = collections.namedtuple('Lab', 'name seed title run')
+Lab = collections.namedtuple('Lab', 'name title run')
 
 
 def _turtle_poses(name):
@@ -43,9 +43,9 @@ def turtlesim_square(session):
     launched = session.launch('turtlesim', 'draw_square_demo.launch', canvas_png=canvas)
     start = time.monotonic()
     # Four sides and four turns: draw_square logs "Reached goal" after each.
-    session.wait_until(lambda: launched.output().count('Reached goal') >= 8, 90,
-                       'draw_square to reach the 8 goals of one square')
-    seconds = session.elapsed_since(start)
+    wait_until(lambda: launched.output().count('Reached goal') >= 8, 90,
+               'draw_square to reach the 8 goals of one square')
+    seconds = time.monotonic() - start
     points = _points(poses)
     poses.close()
     session.stop(launched)  # the simulator writes the canvas as it shuts down
@@ -58,7 +58,7 @@ def my_turtle_pose(session):
     """000, stage 2: my_turtle_pose drives forward at 0.5 m/s and prints every pose."""
     poses = _turtle_poses('turtle1')
     launched = session.launch('my_turtle', 'move_pose.launch')
-    session.wait_until(lambda: path_length(_points(poses)) > 2.0, 30, 'turtle1 to drive 2 m')
+    wait_until(lambda: path_length(_points(poses)) > 2.0, 30, 'turtle1 to drive 2 m')
     points = _points(poses)
     first, last = poses.snapshot()[0], poses.snapshot()[-1]
     poses.close()
@@ -83,13 +83,13 @@ def my_turtle_teleop(session):
     chain = PtyProgram(['roslaunch', '--wait', 'my_turtle', 'teleop_chain.launch'], env=session.env)
     try:
         chain.wait_for_output('currently:', 60)
-        session.wait_until(lambda: poses.snapshot(), 30, 'the pose of turtle1')
+        wait_until(lambda: poses.snapshot(), 30, 'the pose of turtle1')
         for key, repeats in TELEOP_SCRIPT:
             for _ in range(repeats):
                 chain.type(key)
                 time.sleep(0.2)  # typing speed of the script, not a wait for a result
-        session.wait_until(lambda: poses.snapshot()[-1].linear_velocity == 0.0, 10,
-                           'turtle1 to stop after k')
+        wait_until(lambda: poses.snapshot()[-1].linear_velocity == 0.0, 10,
+                   'turtle1 to stop after k')
         canvas = _save_canvas(session, 'turtlesim_node', 'my_turtle-teleop.png')
         speeds = re.findall(r'currently:\s+speed ([\d.]+)\s+turn ([\d.]+)', chain.read_available())
     finally:
@@ -109,7 +109,7 @@ def report_shapes(session):
     for shape in ('square', 'triangle'):
         poses = _turtle_poses('robotics')
         launched = session.launch('ros_exercises', 'exercise5.launch', shape=shape)
-        finished = session.wait_until(
+        finished = wait_until(
             lambda: re.search(r'Finished the %s at .*, ([\d.]+) m from the start' % shape,
                               launched.output()), 120, 'the %s to be finished' % shape)
         points = _points(poses)
@@ -139,8 +139,8 @@ LASER_BLOCK = re.compile(r's1 \[0\]\s+(\S+)\s+s2 \[90\]\s+(\S+)\s+s3 \[180\]\s+(
 def turtlebot3_laser(session):
     """001: laser_data.py prints beams 0, 90, 180, 270 and 359 of fake_tb3's scans."""
     launched = session.launch('move_turtlebot3', 'laser_data.launch')
-    session.wait_until(lambda: len(LASER_BLOCK.findall(launched.output())) >= 3, 60,
-                       'laser_data to print three scans')
+    wait_until(lambda: len(LASER_BLOCK.findall(launched.output())) >= 3, 60,
+               'laser_data to print three scans')
     session.stop(launched)
     blocks = LASER_BLOCK.findall(launched.output())
     last = ['%.3f m' % float(value) if value != 'inf' else 'inf' for value in blocks[-1]]
@@ -160,7 +160,7 @@ def turtlebot3_avoid(session):
                 and all(scan.ranges[0] <= 0.5 for scan in last_scans)
                 and last_odoms[0].twist.twist.linear.x == 0.0)
 
-    session.wait_until(stopped_at_the_wall, 60, 'avoid_obstacle to stop in front of the wall')
+    wait_until(stopped_at_the_wall, 60, 'avoid_obstacle to stop in front of the wall')
     front = scans.snapshot()[-1].ranges[0]
     driven = path_length(_odom_points(odoms))
     hits = _collisions(collisions)
@@ -168,13 +168,13 @@ def turtlebot3_avoid(session):
     lines = ['avoid_obstacle drove %.2f m and stopped %.3f m from the wall; collisions: %d'
              % (driven, front, hits)]
 
-    odoms.messages.clear()
+    odoms.clear()
     clock = Recorder('/clock', Clock)
     picture = session.picture('move_turtlebot3-wander.png')
     launched = session.launch('move_turtlebot3', 'wander.launch', real_time_factor=10,
                               picture_png=picture)
-    session.wait_until(lambda: clock.snapshot() and clock.snapshot()[-1].clock.to_sec() >= 120.0, 60,
-                       'wander to run 120 simulated seconds')
+    wait_until(lambda: clock.snapshot() and clock.snapshot()[-1].clock.to_sec() >= 120.0, 60,
+               'wander to run 120 simulated seconds')
     session.call_trigger('/fake_tb3/save_picture')
     lines.append('wander.py drove %.1f m in 120 simulated seconds in turtlebot3_world; collisions: %d'
                  % (path_length(_odom_points(odoms)), _collisions(collisions)))
@@ -182,13 +182,6 @@ def turtlebot3_avoid(session):
     for recorder in (scans, odoms, collisions, clock):
         recorder.close()
     return LabReport(lines, [picture])
-
-
-def _laser_red_pixels(path):
-    import numpy
-    from PIL import Image
-    image = numpy.asarray(Image.open(path).convert('RGB')).astype(int)
-    return int(numpy.sum((image[:, :, 0] > 200) & (image[:, :, 1] < 60) & (image[:, :, 2] < 60)))
 
 
 def turtlebot3_rviz(session):
@@ -200,21 +193,21 @@ def turtlebot3_rviz(session):
     with VirtualScreen() as screen:
         rviz = session.launch('turtlebot3_gazebo', 'turtlebot3_gazebo_rviz.launch',
                               env=screen.environment(session.env))
-        session.wait_until(lambda: _laser_red_pixels(screen.screenshot(screenshot)) > 300, 90,
-                           'rviz to draw the laser points')
-        red = _laser_red_pixels(screenshot)
+        wait_until(lambda: red_pixels(screen.screenshot(screenshot)) > 300, 90,
+                   'rviz to draw the laser points')
+        red = red_pixels(screenshot)
         session.stop(rviz)
     session.stop(world)
     return LabReport(['rviz drew the robot model and the scan: %d laser-red pixels' % red], [screenshot])
 
 
 LABS = [
-    Lab('square', 'turtlesim', 'turtlesim draws a square (draw_square)', turtlesim_square),
-    Lab('turtle', '000', 'my_turtle drives forward and prints the pose', my_turtle_pose),
-    Lab('teleop', '000', 'keyboard teleop -> my_turtle_node -> turtle1', my_turtle_teleop),
-    Lab('report', '002', 'the report\'s square and triangle (exercise 5)', report_shapes),
-    Lab('laser', '001', 'TurtleBot3 laser printout (laser_data.py)', turtlebot3_laser),
-    Lab('avoid', '001', 'TurtleBot3 obstacle avoidance (avoid_obstacle.py, wander.py)',
+    Lab('square', 'turtlesim draws a square (draw_square)', turtlesim_square),
+    Lab('turtle', 'my_turtle drives forward and prints the pose', my_turtle_pose),
+    Lab('teleop', 'keyboard teleop -> my_turtle_node -> turtle1', my_turtle_teleop),
+    Lab('report', 'the report\'s square and triangle (exercise 5)', report_shapes),
+    Lab('laser', 'TurtleBot3 laser printout (laser_data.py)', turtlebot3_laser),
+    Lab('avoid', 'TurtleBot3 obstacle avoidance (avoid_obstacle.py, wander.py)',
         turtlebot3_avoid),
-    Lab('rviz', '001', 'rviz with the TurtleBot3 model and the laser scan', turtlebot3_rviz),
+    Lab('rviz', 'rviz with the TurtleBot3 model and the laser scan', turtlebot3_rviz),
 ]

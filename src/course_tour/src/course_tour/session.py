@@ -6,25 +6,17 @@ Ctrl-C in a terminal would, so the simulators save their pictures at shutdown.
 """
 import math
 import os
-import socket
 import subprocess
 import threading
-import time
 
 import rosgraph
 import rospy
 
-from course_common.processes import stop_process_group
+from course_common.processes import free_port, stop_process_group
 from course_common.testing import wait_until
 
 
 ROSCORE_PARAMS = {'/run_id', '/rosdistro', '/rosversion'}
-
-
-def free_port():
-    with socket.socket() as probe:
-        probe.bind(('127.0.0.1', 0))
-        return probe.getsockname()[1]
 
 
 class Launched:
@@ -47,7 +39,7 @@ class Launched:
 
 
 class Recorder:
-    """Keeps every message of a topic (with its arrival time) for a lab to measure afterwards."""
+    """Keeps every message of a topic for a lab to measure afterwards."""
 
     def __init__(self, topic, message_type):
         self.messages = []
@@ -61,6 +53,10 @@ class Recorder:
     def snapshot(self):
         with self._lock:
             return list(self.messages)
+
+    def clear(self):
+        with self._lock:
+            self.messages.clear()
 
     def close(self):
         self._subscriber.unregister()
@@ -132,10 +128,6 @@ class Session:
             self.stop(launched)
 
     @staticmethod
-    def wait_until(condition, timeout, what):
-        return wait_until(condition, timeout, what=what, poll=0.05)
-
-    @staticmethod
     def call_trigger(service, timeout=15.0):
         """Call a std_srvs/Trigger service once it exists; returns its message (a saved file's path)."""
         from std_srvs.srv import Trigger
@@ -144,7 +136,3 @@ class Session:
         if not response.success:
             raise RuntimeError('%s failed: %s' % (service, response.message))
         return response.message
-
-    @staticmethod
-    def elapsed_since(start):
-        return time.monotonic() - start
