@@ -14,8 +14,6 @@ It starts its own roscore on a free port and stops everything it started.
 import argparse
 import math
 import os
-import signal
-import socket
 import subprocess
 import sys
 import time
@@ -28,6 +26,8 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu, JointState, LaserScan
 
+from course_common.processes import free_port, stop_process_group
+from course_common.testing import wait_until
 from fake_tb3.lidar import Laser
 from fake_tb3.models import get_model
 from fake_tb3.simulation import SimRobot, Simulation
@@ -58,23 +58,12 @@ def scan_time(samples):
 
 def start_master():
     """A roscore of our own on a free port (ROS_MASTER_URI is set to it)."""
-    with socket.socket() as sock:
-        sock.bind(('localhost', 0))
-        port = sock.getsockname()[1]
+    port = free_port()
     os.environ['ROS_MASTER_URI'] = 'http://localhost:%d' % port
     core = subprocess.Popen(['roscore', '-p', str(port)], stdout=subprocess.DEVNULL,
                             stderr=subprocess.DEVNULL, start_new_session=True)
-    deadline = time.monotonic() + 30
-    while not rosgraph.is_master_online():
-        if time.monotonic() > deadline:
-            raise RuntimeError('roscore did not start')
-        time.sleep(0.2)
+    wait_until(rosgraph.is_master_online, 30, 'roscore', poll=0.2)
     return core
-
-
-def stop(process):
-    os.killpg(process.pid, signal.SIGINT)
-    process.wait(30)
 
 
 class TopicCounter:
@@ -121,11 +110,11 @@ def run_simulator(name, real_time_factor, robots, seconds):
     spinners = [rospy.Publisher('/%s/cmd_vel' % robot['name'], Twist, queue_size=1, latch=True)
                 for robot in robots]
     try:
-        deadline = time.monotonic() + 60
-        while len(counter.clock) < 10 or not all(p.get_num_connections() for p in spinners):
-            if time.monotonic() > deadline or simulator.poll() is not None:
-                raise RuntimeError('the simulator did not start')
-            time.sleep(0.1)
+        wait_until(lambda: simulator.poll() is not None or (
+            len(counter.clock) >= 10 and all(p.get_num_connections() for p in spinners)),
+            60, 'the simulator to start', poll=0.1)
+        if simulator.poll() is not None:
+            raise RuntimeError('the simulator exited (code %d)' % simulator.returncode)
         twist = Twist()
         twist.angular.z = 0.5
         for publisher in spinners:
@@ -143,7 +132,7 @@ def run_simulator(name, real_time_factor, robots, seconds):
         counter.close()
         for publisher in spinners:
             publisher.unregister()
-        stop(simulator)
+        stop_process_group(simulator, 30)
 
 
 def grid_of_robots(count):
@@ -180,7 +169,7 @@ def main():
                      '%d%s' % (most, ' (the most tried)' if most == counts[-1] else ''), '>= 10',
                      most >= 10))
     finally:
-        stop(core)
+        stop_process_group(core, 30)
     width = max(len(row[0]) for row in rows)
     print('| %-*s | %-28s | %-9s | met |' % (width, 'measure', 'value', 'target'))
     print('|%s|%s|%s|-----|' % ('-' * (width + 2), '-' * 30, '-' * 11))

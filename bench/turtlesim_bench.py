@@ -11,8 +11,6 @@ in percent of one core. Targets (issue 2): 62.5 Hz, p99 gap <= 18 ms, CPU <= 3 %
 """
 import argparse
 import os
-import signal
-import socket
 import subprocess
 import sys
 import threading
@@ -22,26 +20,14 @@ import xmlrpc.client
 import rosgraph
 import rospy
 
+from course_common.processes import free_port, stop_process_group
+from course_common.testing import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn
 
 TARGET_CPU = {1: 3.0, 100: 6.0, 500: 35.0}
 TARGET_RATE = 62.5
 TARGET_P99_MS = 18.0
-
-
-def free_port():
-    with socket.socket() as probe:
-        probe.bind(('localhost', 0))
-        return probe.getsockname()[1]
-
-
-def wait_for(condition, timeout, what):
-    deadline = time.monotonic() + timeout
-    while not condition():
-        if time.monotonic() > deadline:
-            sys.exit('turtlesim_bench: timed out waiting for %s' % what)
-        time.sleep(0.05)
 
 
 def cpu_seconds(pid):
@@ -81,7 +67,7 @@ def sleep_loop_p99_lateness(seconds):
 
 def measure(pid, topic, window):
     poses = PoseTimes(topic)
-    wait_for(lambda: len(poses.between(0.0, time.monotonic())) >= 20, 20.0, 'poses on %s' % topic)
+    wait_until(lambda: len(poses.between(0.0, time.monotonic())) >= 20, 20.0, 'poses on %s' % topic)
     start, cpu_start = time.monotonic(), cpu_seconds(pid)
     time.sleep(window)
     end, cpu_end = time.monotonic(), cpu_seconds(pid)
@@ -107,7 +93,7 @@ def main():
     try:
         started.append(subprocess.Popen(['roscore', '-p', str(port)], env=env, stdout=subprocess.DEVNULL,
                                         stderr=subprocess.DEVNULL, start_new_session=True))
-        wait_for(lambda: rosgraph.is_master_online(), 30.0, 'roscore on port %d' % port)
+        wait_until(rosgraph.is_master_online, 30.0, 'roscore on port %d' % port, poll=0.05)
         started.append(subprocess.Popen(['rosrun', 'turtlesim', 'turtlesim_node'], env=env,
                                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                         start_new_session=True))
@@ -134,13 +120,7 @@ def main():
               'which adds to every gap above.' % sleep_loop_p99_lateness(5.0))
     finally:
         for process in reversed(started):
-            if process.poll() is None:
-                os.killpg(process.pid, signal.SIGINT)
-                try:
-                    process.wait(20)
-                except subprocess.TimeoutExpired:
-                    os.killpg(process.pid, signal.SIGKILL)
-                    process.wait()
+            stop_process_group(process, 20.0)
 
 
 if __name__ == '__main__':

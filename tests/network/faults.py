@@ -7,7 +7,7 @@ each leaves the graph as it found it (turtlesim running, no course node).
 import rosgraph
 
 from rosnet import now, start_master, start_probe
-from scenarios import POSE_FIELDS, TURTLESIM_POSE_HZ, publish
+from scenarios import POSE_FIELDS, TURTLESIM, TURTLESIM_POSE_HZ, publish
 
 RECOVERY_TIMEOUT = 20.0
 # turtlesim zeroes the velocities 1.0 s after the last command; poses say so one tick later.
@@ -19,6 +19,13 @@ def course_node(graph, name, *argv):
     is still: whatever moves it afterwards is this node, not the last commands of an earlier one."""
     wait_for_pose(graph, stopped, 'turtle1 to be still before %s starts' % name, STOP_TIMEOUT)
     return graph.processes.start(name, ['rosrun'] + list(argv), graph.env)
+
+
+def driving(graph, driven, name, *argv):
+    """course_node(), once its commands move turtle1 (driven(pose values) is true)."""
+    node = course_node(graph, name, *argv)
+    wait_for_pose(graph, driven, '%s to drive turtle1' % name)
+    return node
 
 
 def circling(values):
@@ -40,14 +47,13 @@ def wait_for_pose(graph, condition, what, timeout=RECOVERY_TIMEOUT, since=None):
 def restart_simulator(graph):
     """SIGKILL turtlesim, start it again; returns the new Process."""
     graph.simulator.kill()
-    graph.simulator = graph.processes.start('turtlesim', ['rosrun', 'turtlesim', 'turtlesim_node'], graph.env)
+    graph.simulator = graph.processes.start('turtlesim', TURTLESIM, graph.env)
     return graph.simulator
 
 
 def simulator_killed_under_circle(graph):
     """turtlesim dies (SIGKILL) while circle drives it; started again, circle drives the new one."""
-    circle = course_node(graph, 'circle', 'ros_exercises', 'circle')
-    wait_for_pose(graph, circling, 'circle to drive turtle1')
+    circle = driving(graph, circling, 'circle', 'ros_exercises', 'circle')
     restart_simulator(graph)
     recovered = wait_for_pose(graph, circling, 'circle to drive the restarted turtlesim')
     assert circle.running(), circle.log()[-2000:]
@@ -58,8 +64,7 @@ def simulator_killed_under_circle(graph):
 def kill_and_restart(graph, driven, name, *rosrun_args):
     """Start a course node, wait until it drives, SIGKILL it: returns (seconds from the kill until
     the turtle stopped, seconds from the restart until it drives again, the restarted Process)."""
-    node = course_node(graph, name, *rosrun_args)
-    wait_for_pose(graph, driven, '%s to drive turtle1' % name)
+    node = driving(graph, driven, name, *rosrun_args)
     killed = now()
     node.kill()
     stop = wait_for_pose(graph, stopped, 'turtle1 to stop without %s' % name, STOP_TIMEOUT, since=killed)
@@ -102,8 +107,7 @@ def registered(graph, topic):
 def master_restarted(graph):
     """The master dies (SIGKILL, with its rosout) while circle drives; a new one starts on the same
     port. Measures what survives and what a user has to do."""
-    circle = course_node(graph, 'circle', 'ros_exercises', 'circle')
-    wait_for_pose(graph, circling, 'circle to drive turtle1')
+    circle = driving(graph, circling, 'circle', 'ros_exercises', 'circle')
     graph.master.kill()
     wait_for_pose(graph, circling, 'circle to go on driving without a master')
     port = int(graph.master_uri.rsplit(':', 1)[1].strip('/'))

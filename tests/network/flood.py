@@ -5,7 +5,7 @@
     flood.py TOPIC RATE SECONDS [VALUES]
 
 VALUES cycles through Twists given as "linear.x,linear.y,angular.z;..." (nan and inf allowed);
-default "1,0,1". Publishing is synchronous (no queue), so `sent` counts messages handed to the
+default "1,0,1". It starts once a subscriber is connected (and fails if none comes). Publishing is synchronous (no queue), so `sent` counts messages handed to the
 subscribers' sockets, not messages dropped from a queue: a slow subscriber slows the flood down and
 shows up as a lower rate.
 """
@@ -15,6 +15,8 @@ import time
 
 import rospy
 from geometry_msgs.msg import Twist
+
+from course_common.testing import wait_until
 
 WAIT_FOR_SUBSCRIBER_SECONDS = 20.0
 
@@ -34,9 +36,7 @@ def main():
     messages = twists(sys.argv[4] if len(sys.argv) > 4 else '1,0,1')
     rospy.init_node('flood', anonymous=True, disable_signals=True)
     publisher = rospy.Publisher(topic, Twist, queue_size=None)  # None: synchronous, see above
-    deadline = time.monotonic() + WAIT_FOR_SUBSCRIBER_SECONDS
-    while publisher.get_num_connections() == 0 and time.monotonic() < deadline:
-        time.sleep(0.01)
+    wait_until(publisher.get_num_connections, WAIT_FOR_SUBSCRIBER_SECONDS, 'a subscriber to %s' % topic)
 
     sent = 0
     start = time.monotonic()

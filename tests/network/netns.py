@@ -11,7 +11,7 @@ import time
 
 import faults
 from rosnet import now, project_environment, start_master, start_probe
-from scenarios import ODOM_FIELDS, POSE_FIELDS
+from scenarios import ODOM_FIELDS, POSE_FIELDS, TURTLESIM
 
 HOST_A_ADDRESS = '10.200.0.1'
 HOST_B_ADDRESS = '10.200.0.2'
@@ -112,7 +112,7 @@ def turtlesim_across(processes, hosts):
     """roscore and turtlesim on host A, ros_exercises circle on host B."""
     env_a, env_b = hosts.environment(hosts.a), hosts.environment(hosts.b)
     start_master(processes, env_a, 11311, netns=hosts.a)
-    processes.start('turtlesim', ['rosrun', 'turtlesim', 'turtlesim_node'], env_a, netns=hosts.a)
+    processes.start('turtlesim', TURTLESIM, env_a, netns=hosts.a)
     probe = start_probe(processes, 'pose', env_a, '/turtle1/pose', POSE_FIELDS, netns=hosts.a)
     circle = processes.start('circle', ['rosrun', 'ros_exercises', 'circle'], env_b, netns=hosts.b)
     # turtlesim: 1.0 s without a command, then the next 16 ms tick publishes the stopped pose.

@@ -15,6 +15,10 @@ import rosgraph
 import rospy
 import rostopic
 
+from course_common.testing import wait_until
+
+MASTER_TIMEOUT = 60.0
+
 
 def contains_nan(value):
     if isinstance(value, float):
@@ -35,8 +39,7 @@ def field(message, path):
 def main():
     topic, fields = sys.argv[1], sys.argv[2:]
     # Started beside a master that may not be up yet (in another network namespace, say).
-    while not rosgraph.is_master_online():
-        time.sleep(0.1)
+    wait_until(rosgraph.is_master_online, MASTER_TIMEOUT, 'the master of ROS_MASTER_URI', poll=0.1)
     rospy.init_node('probe', anonymous=True, disable_signals=True)
     message_class, resolved, _ = rostopic.get_topic_class(topic, blocking=True)
 

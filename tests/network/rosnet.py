@@ -71,19 +71,18 @@ class Process:
         with open(self.log_path) as log:
             return log.read()
 
-    def signal_group(self, signum):
-        try:
-            os.killpg(self.popen.pid, signum)
-        except ProcessLookupError:
-            pass
+    def _family(self):
+        """The processes it started, while it runs (once reaped, its PID may be another process's)."""
+        return descendants(self.popen.pid) if self.running() else []
 
     def stop(self, timeout=10.0):
         """Ctrl-C the group as a terminal would, SIGKILL it if it hangs; returns the exit code.
+        Safe to call again, and after kill().
 
         roslaunch (and so roscore) puts each node in a session of its own: the nodes it started are
         found by parentage first and killed by PID if they outlive it.
         """
-        family = descendants(self.popen.pid)
+        family = self._family()
         stop_process_group(self.popen, timeout)
         kill_pids(family)
         self._log.close()
@@ -91,8 +90,12 @@ class Process:
 
     def kill(self):
         """SIGKILL the process and everything it started (a crash, as the rest of the graph sees it)."""
-        family = descendants(self.popen.pid)
-        self.signal_group(signal.SIGKILL)
+        family = self._family()
+        if self.running():
+            try:
+                os.killpg(self.popen.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
         kill_pids(family)
         self.popen.wait(10)
 
@@ -152,8 +155,9 @@ def master_is_online(uri):
     return rosgraph.Master('/network_test', master_uri=uri).is_online()
 
 
-# Polls, inside a network namespace, until the master of ROS_MASTER_URI answers.
-WAIT_FOR_MASTER = 'import rosgraph, time\nwhile not rosgraph.is_master_online():\n    time.sleep(0.1)\n'
+# Waits, inside a network namespace, until the master of ROS_MASTER_URI answers.
+WAIT_FOR_MASTER = ('import rosgraph\nfrom course_common.testing import wait_until\n'
+                   'wait_until(rosgraph.is_master_online, 20, "the master of ROS_MASTER_URI", poll=0.1)\n')
 
 
 def start_master(processes, env, port, name='roscore', netns=None):
@@ -200,7 +204,7 @@ class Probe(Process):
 
     def _read(self):
         for line in self.popen.stdout:
-            if not line.startswith('{'):  # rostopic's "not published yet" notice
+            if not line.startswith('{'):  # a log line, not a record
                 continue
             record = json.loads(line)
             with self._lock:

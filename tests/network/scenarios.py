@@ -27,6 +27,7 @@ FAKE_TB3_SCAN_HZ = 5.0
 RATE_TOLERANCE = 0.05  # relative: 62.5 Hz +- 3.1 Hz
 FLOOD_RATE = 10000
 TWIST_WIRE_BYTES = 4 + 6 * 8  # length prefix, six float64
+TURTLESIM = ['rosrun', 'turtlesim', 'turtlesim_node']
 POSE_FIELDS = ('x', 'y', 'theta', 'linear_velocity', 'angular_velocity')
 ODOM_FIELDS = ('pose.pose.position.x', 'pose.pose.position.y', 'twist.twist.linear.x',
                'twist.twist.angular.z')
@@ -89,7 +90,7 @@ def new_master(processes):
 
 def start_turtlesim(processes):
     env, master = new_master(processes)
-    simulator = processes.start('turtlesim', ['rosrun', 'turtlesim', 'turtlesim_node'], env)
+    simulator = processes.start('turtlesim', TURTLESIM, env)
     pose = start_probe(processes, 'pose', env, '/turtle1/pose', POSE_FIELDS)
     pose.wait_for_messages(1, timeout=30)
     return Graph(processes, env, master, simulator, '/turtlesim', '/turtle1/cmd_vel',

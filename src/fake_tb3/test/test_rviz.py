@@ -11,20 +11,17 @@ import subprocess
 import tempfile
 import unittest
 
-import numpy as np
 import rospy
 import rostest
-from PIL import Image
 
 from course_common.processes import stop_process_group
-from course_common.screen import VirtualScreen
+from course_common.screen import VirtualScreen, red_pixels
 from course_common.testing import wait_until
 
 
 def red_points(screen, path):
     """Pixels of the screen that are laser red."""
-    image = np.asarray(Image.open(screen.screenshot(path)).convert('RGB')).astype(int)
-    return int(np.sum((image[:, :, 0] > 200) & (image[:, :, 1] < 60) & (image[:, :, 2] < 60)))
+    return red_pixels(screen.screenshot(path))
 
 
 class RvizTest(unittest.TestCase):

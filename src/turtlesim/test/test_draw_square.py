@@ -49,6 +49,7 @@ class DrawSquareTest(unittest.TestCase):
             self.assertAlmostEqual(pose.x, x, delta=CORNER_TOLERANCE, msg=found)
             self.assertAlmostEqual(pose.y, y, delta=CORNER_TOLERANCE, msg=found)
         turned = [pose.theta for pose in stops(poses.since(0)) if pose not in found]
+        self.assertGreaterEqual(len(turned), 3, found)  # a stop after each of the first three turns
         for theta in turned:
             quarter_turns = theta / (math.pi / 2)
             self.assertAlmostEqual(quarter_turns, round(quarter_turns), delta=0.05, msg=turned)

@@ -178,7 +178,7 @@ class TurtlesimInterfaceTest(unittest.TestCase):
             values = (pose.x, pose.y, pose.theta, pose.linear_velocity, pose.angular_velocity)
             self.assertTrue(all(math.isfinite(value) for value in values), pose)
             self.assertTrue(0.0 <= pose.x <= WORLD_SIZE + 1e-6 and 0.0 <= pose.y <= WORLD_SIZE + 1e-6, pose)
-        self.assertIsNone(rospy.get_param('/turtlesim/nan_turtle', None))
+        self.assertNotIn('/nan_turtle/pose', published_topics())  # the rejected spawn made no turtle
 
     # --- pen, colour sensor, background ---
     def test_pen_and_colour_sensor(self):

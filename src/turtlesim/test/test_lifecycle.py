@@ -40,10 +40,6 @@ def registered(node):
     return any(node in nodes for names in graph() for nodes in names.values())
 
 
-def wait_for_service(name):
-    rospy.wait_for_service(name, 20.0)
-
-
 def screenshot(screen, path, window='root'):
     """The screen (or one window) as an RGB picture."""
     with PilImage.open(screen.screenshot(path, window)) as image:
@@ -110,7 +106,7 @@ class LifecycleTest(unittest.TestCase):
         with tempfile.TemporaryDirectory() as folder:
             shot = os.path.join(folder, 'screen.png')
             sim = self.start(['rosrun', 'turtlesim', 'turtlesim_node', '__ns:=windowed'], DISPLAY=screen.display)
-            wait_for_service('/windowed/turtle1/teleport_absolute')
+            rospy.wait_for_service('/windowed/turtle1/teleport_absolute', 20.0)
             rospy.ServiceProxy('/windowed/turtle1/set_pen', SetPen)(*MAGENTA, 5, 0)
             rospy.ServiceProxy('/windowed/turtle1/teleport_absolute', TeleportAbsolute)(2.0, 2.0, 1.0)
             # the trail from the centre to (2, 2) m is about 226 px long and 5 px wide

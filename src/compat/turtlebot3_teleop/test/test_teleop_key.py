@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
 """The TurtleBot3 keyboard teleop typed into through a pty, as a student would use it."""
+import signal
 import subprocess
 import threading
 import time
@@ -98,6 +99,17 @@ class TeleopKeyTest(unittest.TestCase):
         self.teleop.wait_for_output('linear vel 0.22\t angular vel 0.00', timeout=10)
         self.assertEqual(self.teleop.output.count('Control Your TurtleBot3!'), 2)
         self.assertNotIn('linear vel 0.23', self.teleop.output)
+
+    def test_closing_the_terminal_stops_the_robot(self):
+        self.teleop = PtyProgram(['rosrun', 'turtlebot3_teleop', 'turtlebot3_teleop_key'])
+        self.teleop.wait_for_output('CTRL-C to quit', timeout=30)
+        self.teleop.type('wwd')
+        self.wait_for_command(0.02, -0.1)
+        self.teleop.process.send_signal(signal.SIGHUP)  # what closing the terminal window sends
+        self.assertEqual(self.teleop.process.wait(10), 0)
+        wait_until(lambda: self.messages()[-1][1:] == (0.0, 0.0), timeout=5,
+                   what='a zero Twist after the hang-up')
+        self.assertNotIn('Traceback', self.teleop.read_available())
 
     def test_without_a_terminal_it_says_so_and_exits(self):
         result = subprocess.run(['rosrun', 'turtlebot3_teleop', 'turtlebot3_teleop_key'],

@@ -30,6 +30,11 @@ class RobotModel:
         """Distance from base_footprint to the body's farthest corner: how far a spin sweeps."""
         return math.hypot(abs(self.body_offset_x) + self.body_length / 2, self.body_width / 2)
 
+    def clamp(self, linear, angular):
+        """(linear, angular) limited to what the real robot can do."""
+        return (max(-self.max_linear, min(self.max_linear, linear)),
+                max(-self.max_angular, min(self.max_angular, angular)))
+
 
 _WAFFLE = dict(wheel_radius=0.033, wheel_separation=0.287, max_linear=0.26, max_angular=1.82,
                body_length=0.266, body_width=0.266, body_offset_x=-0.064, body_height=0.094,

@@ -97,9 +97,7 @@ class RobotInterface:
                                    '(linear.x %s, angular.z %s)' % (self.label, linear, angular))
             return
         if self.node.clamp_speed:
-            model = self.robot.model
-            linear = max(-model.max_linear, min(model.max_linear, linear))
-            angular = max(-model.max_angular, min(model.max_angular, angular))
+            linear, angular = self.robot.model.clamp(linear, angular)
         self.robot.command = (linear, angular)
         self.last_command_ns = self.node.sim_ns
         self.timed_out = False

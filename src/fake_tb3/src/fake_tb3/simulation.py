@@ -59,21 +59,22 @@ def sweep(robot, dt):
     return (abs(linear) + abs(angular) * robot.model.body_corner_radius) * dt
 
 
-def _first_overlap(robot, linear, angular, dt, segments, circles):
+def _first_overlap(robot, dt, segments, circles):
     """Fraction of the step (0..1] at which the body first overlaps an obstacle, None if never.
 
     Returns (blocked_fraction, free_fraction): the substep that overlaps and the one before it.
     """
     model = robot.model
-    sweep = (abs(linear) + abs(angular) * model.body_corner_radius) * dt
-    substeps = max(1, math.ceil(sweep / SUBSTEP_LENGTH))
+    linear, angular = robot.command
+    travel = sweep(robot, dt)
+    substeps = max(1, math.ceil(travel / SUBSTEP_LENGTH))
     for first in range(0, substeps, SUBSTEPS_PER_BATCH):
         count = min(SUBSTEPS_PER_BATCH, substeps - first)
         fractions = np.arange(first + 1, first + count + 1) / substeps
         # Only the obstacles this batch can reach: around the middle of its path.
         mid_x, mid_y, _ = arc_poses(robot.x, robot.y, robot.yaw, linear, angular,
                                     dt * (first + count / 2) / substeps)
-        reach = sweep * count / substeps / 2 + model.body_corner_radius
+        reach = travel * count / substeps / 2 + model.body_corner_radius
         near_segments, near_circles = nearby(segments, circles, float(mid_x), float(mid_y), reach)
         if not len(near_segments) and not len(near_circles):
             continue
@@ -108,7 +109,7 @@ def drive(robot, dt, segments, circles):
     fraction = 1.0
     travel = sweep(robot, dt)
     if travel > robot.free_travel:
-        overlap = _first_overlap(robot, linear, angular, dt, segments, circles)
+        overlap = _first_overlap(robot, dt, segments, circles)
         if overlap is not None:
             fraction = _contact_fraction(robot, linear, angular, dt, *overlap, segments, circles)
         robot.free_travel = 0.0
@@ -142,7 +143,6 @@ class Simulation:
         self.world = world
         self.robots = list(robots)
         self.robots_see_each_other = robots_see_each_other
-        self.time = 0.0
 
     def obstacles_for(self, robot):
         """(segments, circles) that `robot` sees and hits."""
@@ -158,7 +158,6 @@ class Simulation:
 
     def step(self, dt):
         """Advance every robot by dt seconds; returns the robots that began a contact."""
-        self.time += dt
         if self.robots_see_each_other and len(self.robots) > 1:
             # What the others may travel comes out of each robot's free travel too.
             travels = [sweep(robot, dt) for robot in self.robots]

@@ -115,6 +115,8 @@ def test_robots_see_and_stop_at_each_other():
 def test_unknown_model_is_a_clear_error():
     assert get_model('waffle_pi').wheel_separation == 0.287
     assert get_model('burger').max_angular == 2.84
+    assert get_model('waffle').clamp(1.0, -5.0) == (0.26, -1.82)
+    assert get_model('burger').clamp(-0.1, 0.5) == (-0.1, 0.5)
     with pytest.raises(UnknownModelError, match="unknown TurtleBot3 model 'burgerr': use one of "
                                                 'burger, waffle, waffle_pi'):
         get_model('burgerr')

@@ -1,6 +1,4 @@
 """World files: the TurtleBot3 world's geometry and clear errors for bad files."""
-import math
-
 import pytest
 
 from fake_tb3.world import WorldError, World, available_worlds, load_world
@@ -20,7 +18,6 @@ def test_turtlebot3_world_geometry():
     assert {(2.9329, 0.0), (-2.9329, 0.0), (1.4665, 2.54), (-1.4665, -2.54)} <= corners
     # Outer circumradius 3.2996: the inner 2.9329 plus the thickness 0.3175 / cos 30.
     assert -min(x for x, y in corners if y == 0.0) == pytest.approx(3.2996, abs=1e-4)
-    assert 2.8575 / math.cos(math.pi / 6) == pytest.approx(3.2996, abs=1e-4)
     # Big prism at (3.5, 0), circumradius 1.1732: its corner on the axis at x = 2.3268.
     assert (2.3268, 0.0) in corners
     # Small prisms circumradius 0.8066 at (+-1.8, +-2.7).

@@ -41,10 +41,6 @@ class RosLog:
     def warning(text):
         rospy.logwarn(text)
 
-    @staticmethod
-    def error(text):
-        rospy.logerr(text)
-
 
 def _float32(value):
     """Fit a value into a float32 message field (turtlesim/Pose): huge velocities saturate."""

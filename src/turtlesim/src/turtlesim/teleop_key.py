@@ -10,7 +10,7 @@ import sys
 import rospy
 from geometry_msgs.msg import Twist
 
-from course_common.keyboard import KeyReader, NoTerminalError, write_line
+from course_common.keyboard import teleop_keys, write_line
 
 # last byte of each arrow key -> (linear, angular) before scaling
 KEY_MOTIONS = {'A': (1.0, 0.0), 'B': (-1.0, 0.0), 'C': (0.0, -1.0), 'D': (0.0, 1.0)}
@@ -35,21 +35,17 @@ def main():
         print(error, file=sys.stderr)
         sys.exit(1)
     publisher = rospy.Publisher('turtle1/cmd_vel', Twist, queue_size=1)
-    try:
-        with KeyReader('turtle_teleop_key') as keys:
-            write_line(BANNER)
-            while not rospy.is_shutdown():
-                key = keys.read(timeout=0.1)
-                if key in QUIT_KEYS:
-                    break
-                if key in KEY_MOTIONS:
-                    linear, angular = KEY_MOTIONS[key]
-                    command = Twist()
-                    command.linear.x, command.angular.z = scale_linear * linear, scale_angular * angular
-                    publisher.publish(command)
-    except NoTerminalError as error:
-        print(error, file=sys.stderr)
-        sys.exit(1)
-    except EOFError:  # the terminal went away: nothing more to read
-        pass
+    with teleop_keys('turtle_teleop_key') as keys:
+        write_line(BANNER)
+        while not rospy.is_shutdown():
+            key = keys.read(timeout=0.1)
+            if key in QUIT_KEYS:
+                break
+            if key in KEY_MOTIONS:
+                linear, angular = KEY_MOTIONS[key]
+                command = Twist()
+                command.linear.x, command.angular.z = scale_linear * linear, scale_angular * angular
+                publisher.publish(command)
+    # No stop command on the way out, as in the original: turtlesim stops a turtle by itself 1 s
+    # after its last command.
     rospy.signal_shutdown('quit')

@@ -7,7 +7,7 @@ original to float precision. Positions are kept as the original keeps them, in t
 The caller drives it: one `tick(now)` per 16 ms with the wall-clock time `now` in seconds, and
 requests (velocity commands, teleports, spawn/kill/clear/reset) between ticks. Errors in requests
 raise TurtlesimError, whose text is what the user should read; log lines go to `log`, an object
-with info(), warning() and error() (a logging.Logger will do).
+with info() and warning() (a logging.Logger will do).
 """
 import math
 import random

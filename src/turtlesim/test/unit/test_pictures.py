@@ -14,7 +14,7 @@ class SilentLog:
     def info(self, text):
         pass
 
-    warning = error = info
+    warning = info
 
 
 def painted(canvas):

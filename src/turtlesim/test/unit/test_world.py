@@ -20,9 +20,6 @@ class RecordingLog:
     def warning(self, text):
         self.lines.append(('WARN', text))
 
-    def error(self, text):
-        self.lines.append(('ERROR', text))
-
     def texts(self, level):
         return [text for line_level, text in self.lines if line_level == level]
 

@@ -1,11 +1,10 @@
 """ROS side of the TurtleBot3 keyboard teleop: reads keys, publishes cmd_vel every 0.1 s."""
-import sys
 import time
 
 import rospy
 from geometry_msgs.msg import Twist
 
-from course_common.keyboard import KeyReader, NoTerminalError, write_line
+from course_common.keyboard import teleop_keys, write_line
 from turtlebot3_teleop.key_commands import DEFAULT_MODEL, KeyCommands, speed_limits
 
 PUBLISH_PERIOD = 0.1  # s, wall clock: the user types in real time even when the simulation runs faster
@@ -18,15 +17,20 @@ def twist(linear, angular):
     return message
 
 
+def stop_robot(publisher):
+    """The robot keeps the last command it got, so leaving without a zero Twist would let it run."""
+    publisher.publish(Twist())
+    # publish() only queues the message for a sender thread that shutdown closes, and rospy has
+    # no flush to wait on: give that thread one period to deliver it.
+    time.sleep(PUBLISH_PERIOD)
+
+
 def drive(keys, commands, publisher):
     """Read keys until Ctrl-C (or the terminal closes), publishing the ramped command at every pass."""
     write_line(commands.banner())
     next_publish = time.monotonic()
     while not rospy.is_shutdown():
-        try:
-            key = keys.read(timeout=max(0.0, next_publish - time.monotonic()))
-        except EOFError:
-            return  # the terminal went away: stop the robot as Ctrl-C does
+        key = keys.read(timeout=max(0.0, next_publish - time.monotonic()))
         if key is not None:
             text = commands.press(key)
             if commands.quit:
@@ -48,13 +52,8 @@ def main():
                       'of %s.', model, DEFAULT_MODEL)
     commands = KeyCommands(max_linear, max_angular)
     publisher = rospy.Publisher('cmd_vel', Twist, queue_size=10)
-    try:
-        with KeyReader('turtlebot3_teleop_key') as keys:
-            drive(keys, commands, publisher)
-    except NoTerminalError as error:
-        sys.stderr.write('%s\n' % error)
-        sys.exit(1)
-    # The robot keeps the last command it got, so leaving without a zero Twist would let it run.
-    publisher.publish(Twist())
-    # rospy sends from a background thread that dies with the process: give it one pass to deliver.
-    time.sleep(PUBLISH_PERIOD)
+    # Runs on every way out: Ctrl-C, closing or losing the terminal, SIGINT from roslaunch or rosnode.
+    rospy.on_shutdown(lambda: stop_robot(publisher))
+    with teleop_keys('turtlebot3_teleop_key') as keys:
+        drive(keys, commands, publisher)
+    rospy.signal_shutdown('quit')

@@ -1,12 +1,10 @@
 """The ROS side of the keyboard teleop: reads keys, publishes ~cmd_vel every 0.1 s pass."""
-import signal
-import sys
 import time
 
 import rospy
 from geometry_msgs.msg import Twist
 
-from course_common.keyboard import KeyReader, NoTerminalError, write_line
+from course_common.keyboard import teleop_keys, write_line
 from turtlebot_teleop.keys import BANNER, PASS_SECONDS, QUIT_KEY, KeyboardTeleop
 
 
@@ -20,7 +18,8 @@ def _twist(linear, angular):
 def _stop_robot(publisher):
     """Send a zero Twist before quitting, or the relay would keep the last command forever."""
     publisher.publish(Twist())
-    # publish() only queues the message for a sender thread, which dies with the process.
+    # publish() only queues the message for a sender thread that shutdown closes, and rospy has
+    # no flush to wait on: give that thread one pass to deliver it.
     time.sleep(PASS_SECONDS)
 
 
@@ -41,21 +40,12 @@ def _drive(keys, teleop, publisher):
 
 def main():
     teleop = KeyboardTeleop()
-    try:
-        with KeyReader('turtlebot_teleop_key') as keys:
-            rospy.init_node('turtlebot_teleop_keyboard')
-            publisher = rospy.Publisher('~cmd_vel', Twist, queue_size=1)
-            # Runs on every way out: Ctrl-C, end of the terminal, SIGINT from roslaunch or rosnode.
-            rospy.on_shutdown(lambda: _stop_robot(publisher))
-            # Closing the terminal window sends SIGHUP, which rospy does not handle.
-            signal.signal(signal.SIGHUP, lambda *_: rospy.signal_shutdown('the terminal was closed'))
-            write_line(BANNER)
-            write_line(teleop.speeds_line())
-            try:
-                _drive(keys, teleop, publisher)
-            except (EOFError, OSError):
-                pass  # the terminal went away: quit as with Ctrl-C
-            rospy.signal_shutdown('quit')
-    except NoTerminalError as error:
-        sys.stderr.write('%s\n' % error)
-        sys.exit(1)
+    with teleop_keys('turtlebot_teleop_key') as keys:
+        rospy.init_node('turtlebot_teleop_keyboard')
+        publisher = rospy.Publisher('~cmd_vel', Twist, queue_size=1)
+        # Runs on every way out: Ctrl-C, closing or losing the terminal, SIGINT from roslaunch or rosnode.
+        rospy.on_shutdown(lambda: _stop_robot(publisher))
+        write_line(BANNER)
+        write_line(teleop.speeds_line())
+        _drive(keys, teleop, publisher)
+    rospy.signal_shutdown('quit')
