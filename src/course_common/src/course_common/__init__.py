@@ -1,1 +1,1 @@
-"""Helpers shared by the course's packages (no rospy here: simulator cores and tests use them)."""
+"""Helpers shared by the course's packages. Only teleop_ros imports rospy; simulator cores use the rest."""

@@ -5,24 +5,10 @@ import rospy
 from geometry_msgs.msg import Twist
 
 from course_common.keyboard import teleop_keys, write_line
+from course_common.teleop_ros import stop_robot_on_shutdown, twist
 from turtlebot3_teleop.key_commands import DEFAULT_MODEL, KeyCommands, speed_limits
 
 PUBLISH_PERIOD = 0.1  # s, wall clock: the user types in real time even when the simulation runs faster
-
-
-def twist(linear, angular):
-    message = Twist()
-    message.linear.x = linear
-    message.angular.z = angular
-    return message
-
-
-def stop_robot(publisher):
-    """The robot keeps the last command it got, so leaving without a zero Twist would let it run."""
-    publisher.publish(Twist())
-    # publish() only queues the message for a sender thread that shutdown closes, and rospy has
-    # no flush to wait on: give that thread one period to deliver it.
-    time.sleep(PUBLISH_PERIOD)
 
 
 def drive(keys, commands, publisher):
@@ -52,8 +38,7 @@ def main():
                       'of %s.', model, DEFAULT_MODEL)
     commands = KeyCommands(max_linear, max_angular)
     publisher = rospy.Publisher('cmd_vel', Twist, queue_size=10)
-    # Runs on every way out: Ctrl-C, closing or losing the terminal, SIGINT from roslaunch or rosnode.
-    rospy.on_shutdown(lambda: stop_robot(publisher))
+    stop_robot_on_shutdown(publisher, PUBLISH_PERIOD)
     with teleop_keys('turtlebot3_teleop_key') as keys:
         drive(keys, commands, publisher)
     rospy.signal_shutdown('quit')
