@@ -148,6 +148,21 @@ def test_every_course_package_is_in_the_labs_table():
         assert '(%s/README.md' % package in linked, '%s is not in the labs table' % package
 
 
+def test_every_picture_is_shown_somewhere():
+    shown = set()
+    for markdown_path in markdown_files():
+        page = os.path.join(ROOT, markdown_path)
+        with open(page, encoding='utf-8') as handle:
+            for target in link_targets(handle.read()):
+                if not is_external(target):
+                    shown.add(os.path.normpath(os.path.join(os.path.dirname(page),
+                                                            target.partition('#')[0])))
+    images = os.path.join(ROOT, 'docs', 'images')
+    unused = sorted(name for name in os.listdir(images)
+                    if os.path.join(images, name) not in shown)
+    assert unused == [], 'pictures in docs/images that no page shows (stale?): %s' % unused
+
+
 # The checker itself, on pages made up for it: it must find what is broken and pass what is not.
 
 def test_the_checker_finds_broken_links_and_pictures(tmp_path, monkeypatch):
