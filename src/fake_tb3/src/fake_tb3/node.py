@@ -16,6 +16,7 @@ import os
 import sys
 import threading
 import time
+import types
 
 import rosgraph.names
 import rospkg
@@ -38,22 +39,12 @@ from fake_tb3.simulation import CommandError, SimRobot, Simulation
 from fake_tb3.timing import Periodic
 from fake_tb3.world import WorldError, load_world
 
+# The simulation's log object: its lines go to rosout.
+ROS_LOG = types.SimpleNamespace(info=rospy.loginfo, warning=rospy.logwarn)
 # Pose and twist covariance of Gazebo's diff drive: x, y, z, roll, pitch, yaw.
 ODOM_COVARIANCE_DIAGONAL = (1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3)
 # When the loop falls this far (wall seconds) behind its schedule it stops trying to catch up.
 MAX_LAG = 0.25
-
-
-class RosLog:
-    """The simulation's log object, writing to rosout."""
-
-    @staticmethod
-    def info(text):
-        rospy.loginfo(text)
-
-    @staticmethod
-    def warning(text):
-        rospy.logwarn(text)
 
 
 class ConfigError(ValueError):
@@ -189,7 +180,7 @@ class FakeTb3Node:
 
     def __init__(self):
         self.lock = threading.Lock()  # held by every tick and while a picture reads the simulation
-        self._requests = collections.deque()  # callables queued by ROS callbacks for the tick thread
+        self._requests = collections.deque()  # callables that ROS callbacks queue for the ticks
         self.use_sim_time = bool(rospy.get_param('/use_sim_time', False))
         self.real_time_factor = _number(rospy.get_param('~real_time_factor', 1.0),
                                         'real_time_factor')
@@ -204,7 +195,7 @@ class FakeTb3Node:
         self.simulation = Simulation(world, robots,
                                      bool(rospy.get_param('~robots_see_each_other', True)),
                                      command_timeout=cmd_vel_timeout, clamp_speed=clamp_speed,
-                                     log=RosLog)
+                                     log=ROS_LOG)
         for robot in robots:
             if self.simulation.overlapping(robot):
                 rospy.logerr('%s: spawned at x %.3f y %.3f overlapping an obstacle of world %s: '

@@ -20,8 +20,10 @@ TEST_ZONE = 0.25
 # A robot in contact that moves more than this (m) before meeting an obstacle again has left the
 # first contact: the new one counts.
 CONTACT_TOLERANCE = 1e-4
-# Bisection rounds that place the body at the contact (step / 2**12 away from it).
-CONTACT_ROUNDS = 12
+# Rounds that place the body at the contact, each testing CONTACT_SAMPLES poses spread between
+# the last clear pose and the first blocked one: it ends a substep / 64**2 away from the contact.
+CONTACT_ROUNDS = 2
+CONTACT_SAMPLES = 63
 TRAIL_SPACING = 0.02
 # m/s. No point of the body may move faster: a command that asks more is scaled down, so that
 # the pose stays a finite number (at 1e308 m/s it would overflow within two seconds).
@@ -79,8 +81,9 @@ def sweep(robot, dt):
 
 
 def _first_overlap(robot, dt, segments, circles):
-    """Fractions (blocked, free) of the step around the body's first overlap with an obstacle:
-    the first tested pose that overlaps and the one before it; None if the path is clear.
+    """(blocked, free, near_segments, near_circles): the fractions of the step of the first tested
+    pose that overlaps an obstacle and of the one before it, and the obstacles near them; None if
+    the path is clear.
 
     The cost is bounded whatever the speed. A command held over a step turns the body about a
     fixed centre, so after one full turn it is back where it started: at most one turn is tested.
@@ -121,20 +124,24 @@ def _first_overlap(robot, dt, segments, circles):
             overlap = boxes_overlap(poses, robot.box, near_segments, near_circles)
             if overlap.any():
                 index = int(np.argmax(overlap))
-                return fractions[index], (fractions[index - 1] if index else start)
+                return (fractions[index], (fractions[index - 1] if index else start),
+                        near_segments, near_circles)
         start = float(fractions[-1])
     return None
 
 
-def _contact_fraction(robot, linear, angular, dt, blocked, free, segments, circles):
-    """Largest fraction in [free, blocked) where the body is still clear, by bisection."""
+def _contact_fraction(robot, dt, blocked, free, segments, circles):
+    """Largest fraction in [free, blocked) where the body is still clear, to a 64**2th."""
+    linear, angular = robot.command
     for _ in range(CONTACT_ROUNDS):
-        middle = (free + blocked) / 2
-        pose = arc_poses(robot.x, robot.y, robot.yaw, linear, angular, middle * dt)
-        if boxes_overlap(pose, robot.box, segments, circles)[0]:
-            blocked = middle
+        fractions = np.linspace(free, blocked, CONTACT_SAMPLES + 2)[1:-1]
+        poses = arc_poses(robot.x, robot.y, robot.yaw, linear, angular, fractions * dt)
+        overlap = boxes_overlap(poses, robot.box, segments, circles)
+        if overlap.any():
+            index = int(np.argmax(overlap))
+            blocked, free = fractions[index], (fractions[index - 1] if index else free)
         else:
-            free = middle
+            free = fractions[-1]
     return free
 
 
@@ -152,7 +159,7 @@ def step_robot(robot, dt, segments, circles):
     if travel > robot.free_travel:
         overlap = _first_overlap(robot, dt, segments, circles)
         if overlap is not None:
-            fraction = _contact_fraction(robot, linear, angular, dt, *overlap, segments, circles)
+            fraction = _contact_fraction(robot, dt, *overlap)
         robot.free_travel = 0.0
     robot.free_travel -= travel * fraction
     duration = fraction * dt

@@ -10,22 +10,9 @@ from fake_tb3.simulation import CommandError, SimRobot, Simulation
 from fake_tb3.world import World
 
 
-class Notes:
-    """A log object that keeps its lines."""
-
-    def __init__(self):
-        self.lines = []
-
-    def info(self, text):
-        self.lines.append(('info', text))
-
-    def warning(self, text):
-        self.lines.append(('warning', text))
-
-
 def simulation_of(model='burger', name='', **options):
     robot = SimRobot(name, get_model(model), laser=Laser(noise_stddev=0.0))
-    return Simulation(World('empty'), [robot], log=Notes(), **options), robot
+    return Simulation(World('empty'), [robot], **options), robot
 
 
 def run(simulation, seconds, dt=0.01):
@@ -53,8 +40,8 @@ def test_clamp_speed_limits_to_the_model():
     assert burger.command == (1.0, -5.0)  # Gazebo has no clamp
 
 
-def test_the_command_timeout_stops_a_silent_robot_and_a_new_command_restarts_it():
-    simulation, robot = simulation_of(name='tb3_1', command_timeout=0.5)
+def test_the_command_timeout_stops_a_silent_robot_and_a_new_command_restarts_it(recording_log):
+    simulation, robot = simulation_of(name='tb3_1', command_timeout=0.5, log=recording_log)
     simulation.command(robot, 0.2, 0.0)
     run(simulation, 0.5)
     assert robot.velocity == (0.2, 0.0)

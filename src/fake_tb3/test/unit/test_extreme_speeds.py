@@ -28,19 +28,6 @@ def burger(x=0.0, y=0.0, yaw=0.0):
     return SimRobot('', get_model('burger'), x, y, yaw, Laser(noise_stddev=0.0))
 
 
-class Notes:
-    """A log object that keeps its lines."""
-
-    def __init__(self):
-        self.lines = []
-
-    def info(self, text):
-        self.lines.append(('info', text))
-
-    def warning(self, text):
-        self.lines.append(('warning', text))
-
-
 @pytest.fixture
 def tested_poses(monkeypatch):
     """Counts the poses the simulation tests for overlap and the clearances it computes: the work
@@ -150,14 +137,12 @@ def test_a_fast_spin_next_to_a_pillar_stops_at_the_contact(tested_poses):
     assert tested_poses['poses'] <= 2 * simulation_module.SUBSTEPS_PER_BATCH
 
 
-def test_leaving_one_obstacle_and_hitting_another_in_one_step_counts_both():
+def test_leaving_one_obstacle_and_hitting_another_in_one_step_counts_both(recording_log):
     # Two walls facing each other: faces at x = -1.0 and x = 2.0.
     walls = World('two walls', [{'type': 'box', 'center': [2.05, 0.0], 'size': [0.1, 4.0]},
                                 {'type': 'box', 'center': [-1.05, 0.0], 'size': [0.1, 4.0]}])
     robot = burger()
-    simulation = Simulation(walls, [robot])
-    notes = Notes()
-    simulation.log = notes
+    simulation = Simulation(walls, [robot], log=recording_log)
     for command, front_or_back, count in (((1e308, 0.0), 2.0 - 0.038, 1),
                                           ((-1e308, 0.0), -1.0 + 0.102, 2),
                                           ((1e308, 0.0), 2.0 - 0.038, 3)):
@@ -167,7 +152,7 @@ def test_leaving_one_obstacle_and_hitting_another_in_one_step_counts_both():
         assert robot.x == pytest.approx(front_or_back, abs=1e-5)
         simulation.step(0.01)  # pushing on: the same contact
         assert robot.collisions == count
-    warnings = [text for level, text in notes.lines if level == 'warning']
+    warnings = [text for level, text in recording_log.lines if level == 'warning']
     assert len(warnings) == 3 and warnings[2].endswith('the body touches an obstacle (collision 3)')
 
 
