@@ -8,7 +8,8 @@ prefixed `<name>/`, as multi_turtlebot3 does.
 
 Threads: the main thread owns the simulation and runs its ticks. ROS callbacks never touch it:
 cmd_vel queues a request that the tick thread applies before its next tick (the model of
-turtlesim). The picture service reads the simulation under a lock that every tick holds too.
+turtlesim). A picture copies the simulation under a lock that every tick holds too, and is drawn
+outside it.
 """
 import collections
 import math
@@ -179,7 +180,7 @@ class FakeTb3Node:
     """Runs the simulation loop: steps physics and publishes every topic at its simulated rate."""
 
     def __init__(self):
-        self.lock = threading.Lock()  # held by every tick and while a picture reads the simulation
+        self.lock = threading.Lock()  # held by every tick and while a picture copies the simulation
         self._requests = collections.deque()  # callables that ROS callbacks queue for the ticks
         self.use_sim_time = bool(rospy.get_param('/use_sim_time', False))
         self.real_time_factor = _number(rospy.get_param('~real_time_factor', 1.0),
@@ -292,7 +293,8 @@ class FakeTb3Node:
 
     def write_picture(self, path):
         with self.lock:
-            save_picture(self.simulation, path)
+            snapshot = self.simulation.snapshot()
+        save_picture(snapshot, path)  # drawn outside the lock: the ticks go on meanwhile
 
     def _on_save_picture(self, _request):
         path = os.path.abspath(os.path.expanduser(str(self.picture_path())))

@@ -1,4 +1,5 @@
 """Robots driving in a world: exact motion, collisions that stop at the contact, laser scans."""
+import copy
 import logging
 import math
 
@@ -279,6 +280,16 @@ class Simulation:
                              'obstacle (collision %d)'
                              % (robot.label, robot.x, robot.y, robot.yaw, robot.collisions))
         return began
+
+    def snapshot(self):
+        """A copy of what a picture shows (the world, the robots' poses, trails and latest scans)
+        to draw while the simulation goes on."""
+        robots = []
+        for robot in self.robots:
+            robot_copy = copy.copy(robot)
+            robot_copy.trail = list(robot.trail)
+            robots.append(robot_copy)
+        return Simulation(self.world, robots, self.robots_see_each_other)
 
     def scan(self, robot):
         """A laser scan of `robot` now (ranges array), also kept as robot.last_scan."""

@@ -51,3 +51,22 @@ def test_picture_shows_world_robot_trail_and_scan(tmp_path):
     red = np.all(image == SCAN, axis=2)
     assert red.sum() > 200
     assert path.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
+
+
+def test_a_snapshot_is_drawn_as_the_simulation_was_when_taken():
+    robot = SimRobot('', get_model('burger'), -2.0, -0.5, 0.0, Laser(noise_stddev=0.0))
+    simulation = Simulation(load_world('turtlebot3_world'), [robot])
+    simulation.command(robot, 0.2, 0.0)
+    for _ in range(100):
+        simulation.step(0.01)
+    simulation.scan(robot)
+    snapshot = simulation.snapshot()
+    picture = np.asarray(render(snapshot))
+    assert np.array_equal(picture, np.asarray(render(simulation)))
+    for _ in range(100):  # the simulation goes on; the snapshot does not
+        simulation.step(0.01)
+    simulation.scan(robot)
+    copied = snapshot.robots[0]
+    assert copied.pose == pytest.approx((-1.8, -0.5, 0.0)) and robot.x == pytest.approx(-1.6)
+    assert copied.trail[-1][0] < -1.79 and robot.trail[-1][0] > -1.61
+    assert np.array_equal(np.asarray(render(snapshot)), picture)
