@@ -37,15 +37,13 @@ from fake_tb3.lidar import Laser
 from fake_tb3.models import UnknownModelError, get_model
 from fake_tb3.render import save_picture
 from fake_tb3.simulation import CommandError, SimRobot, Simulation
-from fake_tb3.timing import Periodic
+from fake_tb3.timing import Pacer, Periodic
 from fake_tb3.world import WorldError, load_world
 
 # The simulation's log object: its lines go to rosout.
 ROS_LOG = types.SimpleNamespace(info=rospy.loginfo, warning=rospy.logwarn)
 # Pose and twist covariance of Gazebo's diff drive: x, y, z, roll, pitch, yaw.
 ODOM_COVARIANCE_DIAGONAL = (1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3)
-# When the loop falls this far (wall seconds) behind its schedule it stops trying to catch up.
-MAX_LAG = 0.25
 
 
 class ConfigError(ValueError):
@@ -308,16 +306,15 @@ class FakeTb3Node:
     # --- the loop ------------------------------------------------------------------------------
     def spin(self):
         """Step and publish until shutdown; simulated time runs real_time_factor x wall time."""
-        anchor_wall, anchor_ns = time.monotonic(), 0
+        pacer = Pacer(self.real_time_factor, time.monotonic())
         while not rospy.is_shutdown():
             next_ns = min(periodic.next_ns for periodic, _ in self.schedules)
-            due = anchor_wall + (next_ns - anchor_ns) / 1e9 / self.real_time_factor
+            due = pacer.due(next_ns)
             now = time.monotonic()
             while now < due and not rospy.is_shutdown():
                 time.sleep(min(due - now, 0.05))
                 now = time.monotonic()
-            if now - due > MAX_LAG:  # cannot keep up: carry on from here rather than rush
-                anchor_wall, anchor_ns = now, next_ns
+            pacer.reached(next_ns, now)
             # Simulated time starts at 0, as Gazebo's; real time stamps are the wall clock.
             stamp = rospy.Time(0, next_ns) if self.use_sim_time else rospy.Time.now()
             with self.lock:
