@@ -1,21 +1,27 @@
 #!/usr/bin/env python3
-"""Benchmark of fake_tb3: prints a table of the three numbers issue 5 sets targets for.
+"""Benchmark of fake_tb3: prints a table of the numbers it sets targets for:
 
   1. time per 360-beam LDS-01 scan in turtlebot3_world (pure core, no ROS);
   2. the highest real-time factor one robot reaches with every topic published at its simulated
      rate and a subscriber on each;
   3. how many robots (spinning on the spot, 1 m apart so that they see each other) run at 1x with
-     all their topics.
+     all their topics;
+  4. the cost of a physics step under the most extreme finite commands (1e308 m/s, 1e308 rad/s,
+     mixes, denormals; pure core), and the real-time factor and topic rates of one robot at 1x
+     while such commands arrive ten times a second.
 
 Run after building, in the ROS environment (source tools/env.sh):
     bench/fake_tb3_bench.py [--quick]
 It starts its own roscore on a free port and stops everything it started.
 """
 import argparse
+import itertools
+import logging
 import math
 import os
 import subprocess
 import sys
+import threading
 import time
 
 import numpy as np
@@ -36,6 +42,10 @@ from fake_tb3.world import load_world
 TOPIC_RATES = {'odom': (Odometry, 30), 'joint_states': (JointState, 30), 'imu': (Imu, 30),
                'scan': (LaserScan, 5)}
 ENOUGH = 0.97  # a run keeps up when time and every topic reach this share of their due
+MAX = 1.7976931348623157e308
+EXTREME_COMMANDS = [(1e308, 0.0), (0.0, 1e308), (-1e308, 0.0), (0.0, -1e308), (0.0, 1e6),
+                    (1e308, 1e308), (-MAX, MAX), (MAX, -1.0), (1.0, -MAX), (5e-324, 1e-310),
+                    (-1e6, 1e-300)]
 
 
 def scan_time(samples):
@@ -54,6 +64,25 @@ def scan_time(samples):
         robot.x, robot.y, robot.yaw = poses[index % len(poses)]
         simulation.scan(robot)
     return (time.perf_counter() - start) / samples
+
+
+def step_times(steps_per_command):
+    """(worst, mean) CPU seconds per physics step (dt 0.01) in turtlebot3_world, one robot, each
+    of EXTREME_COMMANDS held for steps_per_command steps from the spawn pose, in turn. CPU time of
+    this thread: what the step costs, not what other processes of a shared machine take."""
+    robot = SimRobot('', get_model('burger'), -2.0, -0.5, 0.0, Laser())
+    quiet = logging.getLogger('fake_tb3_bench.collisions')  # a collision line per command
+    quiet.addHandler(logging.NullHandler())
+    quiet.propagate = False
+    simulation = Simulation(load_world('turtlebot3_world'), [robot], log=quiet)
+    times = []
+    for command in EXTREME_COMMANDS:
+        simulation.command(robot, *command)
+        for _ in range(steps_per_command):
+            start = time.thread_time()
+            simulation.step(0.01)
+            times.append(time.thread_time() - start)
+    return max(times), sum(times) / len(times)
 
 
 def start_master():
@@ -94,9 +123,10 @@ class TopicCounter:
             subscriber.unregister()
 
 
-def run_simulator(name, real_time_factor, robots, seconds):
-    """Run fake_tb3 with `robots` (spawn dicts) at real_time_factor, every robot spinning, and
-    measure for `seconds` of wall time.
+def run_simulator(name, real_time_factor, robots, seconds, commands=((0.0, 0.5),)):
+    """Run fake_tb3 with `robots` (spawn dicts) at real_time_factor, every robot driven by
+    `commands` (linear, angular) in turn, ten a second (one command: sent once), and measure for
+    `seconds` of wall time.
 
     Returns (achieved real-time factor, the lowest share of its due messages any topic got)."""
     rospy.set_param('/use_sim_time', True)
@@ -107,30 +137,41 @@ def run_simulator(name, real_time_factor, robots, seconds):
                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                  start_new_session=True)
     counter = TopicCounter(robots)
-    spinners = [rospy.Publisher('/%s/cmd_vel' % robot['name'], Twist, queue_size=1, latch=True)
+    cmd_vels = [rospy.Publisher('/%s/cmd_vel' % robot['name'], Twist, queue_size=1, latch=True)
                 for robot in robots]
     try:
         wait_until(lambda: simulator.poll() is not None or (
-            len(counter.clock) >= 10 and all(p.get_num_connections() for p in spinners)),
+            len(counter.clock) >= 10 and all(p.get_num_connections() for p in cmd_vels)),
             60, 'the simulator to start', poll=0.1)
         if simulator.poll() is not None:
             raise RuntimeError('the simulator exited (code %d)' % simulator.returncode)
-        twist = Twist()
-        twist.angular.z = 0.5
-        for publisher in spinners:
-            publisher.publish(twist)
+        stop = threading.Event()
+
+        def drive():
+            for linear, angular in itertools.cycle(commands):
+                twist = Twist()
+                twist.linear.x, twist.angular.z = linear, angular
+                for publisher in cmd_vels:
+                    publisher.publish(twist)
+                if len(commands) == 1 or stop.wait(0.1):
+                    return
+
+        driver = threading.Thread(target=drive, daemon=True)
+        driver.start()
         time.sleep(1.0)  # every subscriber connected and running
         first_wall, first_clock = counter.clock[-1]
         counter.start = first_clock
         time.sleep(seconds)
         last_wall, last_clock = counter.clock[-1]
+        stop.set()
+        driver.join()
         simulated = (last_clock - first_clock).to_sec()
         lowest = min(counter.counts.get((robot['name'], topic), 0) / (rate * simulated)
                      for robot in robots for topic, (_, rate) in TOPIC_RATES.items())
         return simulated / (last_wall - first_wall), lowest
     finally:
         counter.close()
-        for publisher in spinners:
+        for publisher in cmd_vels:
             publisher.unregister()
         stop_process_group(simulator, 30)
 
@@ -149,6 +190,11 @@ def main():
     per_scan = scan_time(500 if seconds < 5 else 3000)
     rows = [('time per 360-beam scan, turtlebot3_world', '%.3f ms' % (per_scan * 1e3),
              '<= 0.2 ms', per_scan <= 0.2e-3)]
+    worst, mean = step_times(30 if seconds < 5 else 100)
+    # A physics step must fit in its 10 ms period at 1x, whatever the command.
+    rows.append(('CPU per physics step, extreme commands, turtlebot3_world',
+                 'worst %.2f ms, mean %.2f ms' % (worst * 1e3, mean * 1e3), '<= 10 ms',
+                 worst <= 10e-3))
     core = start_master()
     try:
         rospy.init_node('fake_tb3_bench', disable_signals=True)
@@ -157,6 +203,10 @@ def main():
         rows.append(('highest real-time factor, 1 robot, all topics',
                      '%.1fx (topics at >= %.0f%%)' % (factor, 100 * lowest), '>= 20x',
                      factor >= 20 and lowest >= ENOUGH))
+        factor, lowest = run_simulator('bench_extreme', 1.0, [spawn], seconds, EXTREME_COMMANDS)
+        rows.append(('1 robot at 1x under extreme commands (10/s)',
+                     '%.3fx (topics at >= %.1f%%)' % (factor, 100 * lowest), '1x, 100%',
+                     factor >= ENOUGH and lowest >= ENOUGH))
         most, counts = 0, (10, 20, 30, 40, 50, 60, 80)
         for count in counts:
             factor, lowest = run_simulator('bench_%d' % count, 1.0, grid_of_robots(count), seconds)
@@ -171,10 +221,10 @@ def main():
     finally:
         stop_process_group(core, 30)
     width = max(len(row[0]) for row in rows)
-    print('| %-*s | %-28s | %-9s | met |' % (width, 'measure', 'value', 'target'))
-    print('|%s|%s|%s|-----|' % ('-' * (width + 2), '-' * 30, '-' * 11))
+    print('| %-*s | %-30s | %-9s | met |' % (width, 'measure', 'value', 'target'))
+    print('|%s|%s|%s|-----|' % ('-' * (width + 2), '-' * 32, '-' * 11))
     for measure, value, target, met in rows:
-        print('| %-*s | %-28s | %-9s | %-3s |'
+        print('| %-*s | %-30s | %-9s | %-3s |'
               % (width, measure, value, target, 'yes' if met else 'NO'))
 
 

@@ -5,12 +5,19 @@ share one /clock). One robot by default, with its topics in the node's namespace
 without prefix, as Gazebo's TurtleBot3; with the private parameter `robots` (a list of
 {name, model, x_pos, y_pos, yaw}) each robot gets its topics under `<name>/` and frames
 prefixed `<name>/`, as multi_turtlebot3 does.
+
+Threads: the main thread owns the simulation and runs its ticks. ROS callbacks never touch it:
+cmd_vel queues a request that the tick thread applies before its next tick (the model of
+turtlesim). A picture copies the simulation under a lock that every tick holds too, and is drawn
+outside it.
 """
+import collections
 import math
 import os
 import sys
 import threading
 import time
+import types
 
 import rosgraph.names
 import rospkg
@@ -24,19 +31,19 @@ from sensor_msgs.msg import Imu, JointState, LaserScan
 from std_msgs.msg import UInt32
 from std_srvs.srv import Trigger, TriggerResponse
 
+from fake_tb3.imu import ImuSensor
 from fake_tb3.kinematics import wheel_turns
 from fake_tb3.lidar import Laser
 from fake_tb3.models import UnknownModelError, get_model
 from fake_tb3.render import save_picture
-from fake_tb3.simulation import SimRobot, Simulation
-from fake_tb3.timing import Periodic
+from fake_tb3.simulation import CommandError, SimRobot, Simulation
+from fake_tb3.timing import Pacer, Periodic
 from fake_tb3.world import WorldError, load_world
 
+# The simulation's log object: its lines go to rosout.
+ROS_LOG = types.SimpleNamespace(info=rospy.loginfo, warning=rospy.logwarn)
 # Pose and twist covariance of Gazebo's diff drive: x, y, z, roll, pitch, yaw.
 ODOM_COVARIANCE_DIAGONAL = (1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3)
-GRAVITY = 9.80665
-# When the loop falls this far (wall seconds) behind its schedule it stops trying to catch up.
-MAX_LAG = 0.25
 
 
 class ConfigError(ValueError):
@@ -73,16 +80,13 @@ class RobotInterface:
         self.node = node
         self.robot = robot
         self.prefix = prefix
-        self.label = robot.name or 'robot'
-        self.last_command_ns = 0
-        self.timed_out = False
+        self.imu_sensor = ImuSensor(1.0 / node.imu_periodic.rate)
         self.odom = rospy.Publisher(prefix + 'odom', Odometry, queue_size=10)
         self.joint_states = rospy.Publisher(prefix + 'joint_states', JointState, queue_size=10)
         self.imu = rospy.Publisher(prefix + 'imu', Imu, queue_size=10)
         self.scan = rospy.Publisher(prefix + 'scan', LaserScan, queue_size=5)
         self.collisions = rospy.Publisher(prefix + 'collisions', UInt32, queue_size=1, latch=True)
         self.collisions.publish(UInt32(0))
-        self.previous_linear = 0.0
         self._build_messages()
         rospy.Subscriber(prefix + 'cmd_vel', Twist, self.on_cmd_vel, queue_size=10)
 
@@ -91,30 +95,18 @@ class RobotInterface:
 
     def on_cmd_vel(self, twist):
         linear, angular = twist.linear.x, twist.angular.z
-        if not (math.isfinite(linear) and math.isfinite(angular)):
-            # At most one line a second: a flood of bad commands must not flood the log too.
-            rospy.logwarn_throttle(1.0, '%s: ignoring cmd_vel with a non-finite velocity '
-                                   '(linear.x %s, angular.z %s)' % (self.label, linear, angular))
+        self.node.submit(lambda: self.apply_command(linear, angular))
+
+    def apply_command(self, linear, angular):
+        """In the tick thread: the command to the simulation. At most one warning a second of
+        each kind: a flood of bad commands must not flood the log too."""
+        try:
+            notice = self.node.simulation.command(self.robot, linear, angular)
+        except CommandError as error:
+            rospy.logwarn_throttle(1.0, str(error))
             return
-        if self.node.clamp_speed:
-            linear, angular = self.robot.model.clamp(linear, angular)
-        self.robot.command = (linear, angular)
-        self.last_command_ns = self.node.sim_ns
-        self.timed_out = False
-
-    def check_timeout(self, now_ns, timeout):
-        """Stop the robot when no command came for `timeout` seconds (0: never)."""
-        if timeout > 0 and not self.timed_out and now_ns - self.last_command_ns > timeout * 1e9:
-            self.timed_out = True
-            if self.robot.command != (0.0, 0.0):
-                self.robot.command = (0.0, 0.0)
-                rospy.loginfo('%s: no cmd_vel for %.2f s, stopping', self.label, timeout)
-
-    def report_collision(self):
-        robot = self.robot
-        rospy.logwarn('%s: collision at x %.3f y %.3f yaw %.3f: the body touches an obstacle '
-                      '(collision %d)', self.label, robot.x, robot.y, robot.yaw, robot.collisions)
-        self.collisions.publish(UInt32(robot.collisions))
+        if notice:
+            rospy.logwarn_throttle(1.0, notice)
 
     def _build_messages(self):
         """The messages this robot publishes, with what never changes filled in once: rospy
@@ -132,7 +124,6 @@ class RobotInterface:
                                          effort=[0.0, 0.0])
         self.imu_message = Imu()
         self.imu_message.header.frame_id = self.frame('imu_link')
-        self.imu_message.linear_acceleration.z = GRAVITY
         self.imu_message.orientation_covariance = _diagonal((1e-6, 1e-6, 1e-6))
         self.imu_message.angular_velocity_covariance = _diagonal((1e-6, 1e-6, 1e-6))
         self.imu_message.linear_acceleration_covariance = _diagonal((1e-6, 1e-6, 1e-6))
@@ -165,15 +156,15 @@ class RobotInterface:
         message.velocity = list(wheel_turns(*robot.velocity, robot.model))  # in one second
         self.joint_states.publish(message)
 
-    def publish_imu(self, stamp, dt):
-        linear, angular = self.robot.velocity
+    def publish_imu(self, stamp):
+        reading = self.imu_sensor.read(self.robot)
         message = self.imu_message
         message.header.stamp = stamp
-        message.orientation = _quaternion(self.robot.yaw)
-        message.angular_velocity.z = angular
-        message.linear_acceleration.x = (linear - self.previous_linear) / dt
-        message.linear_acceleration.y = linear * angular  # centripetal
-        self.previous_linear = linear
+        message.orientation = _quaternion(reading.yaw)
+        message.angular_velocity.z = reading.angular_velocity
+        acceleration = message.linear_acceleration
+        acceleration.x, acceleration.y, acceleration.z = (
+            reading.acceleration_x, reading.acceleration_y, reading.acceleration_z)
         self.imu.publish(message)
 
     def publish_scan(self, stamp, simulation):
@@ -187,22 +178,23 @@ class FakeTb3Node:
     """Runs the simulation loop: steps physics and publishes every topic at its simulated rate."""
 
     def __init__(self):
-        self.sim_ns = 0
-        self.lock = threading.Lock()
+        self.lock = threading.Lock()  # held by every tick and while a picture copies the simulation
+        self._requests = collections.deque()  # callables that ROS callbacks queue for the ticks
         self.use_sim_time = bool(rospy.get_param('/use_sim_time', False))
         self.real_time_factor = _number(rospy.get_param('~real_time_factor', 1.0),
                                         'real_time_factor')
         if self.real_time_factor <= 0:
             raise ConfigError('parameter real_time_factor must be positive, got %r'
                               % self.real_time_factor)
-        self.clamp_speed = bool(rospy.get_param('~clamp_speed', False))
-        self.cmd_vel_timeout = _number(rospy.get_param('~cmd_vel_timeout', 0.0), 'cmd_vel_timeout',
-                                       0)
+        clamp_speed = bool(rospy.get_param('~clamp_speed', False))
+        cmd_vel_timeout = _number(rospy.get_param('~cmd_vel_timeout', 0.0), 'cmd_vel_timeout', 0)
         worlds_dir = os.path.join(rospkg.RosPack().get_path('fake_tb3'), 'worlds')
         world = load_world(rospy.get_param('~world', 'empty'), worlds_dir)
         robots = [self._make_robot(index, spec) for index, spec in enumerate(self._robot_specs())]
         self.simulation = Simulation(world, robots,
-                                     bool(rospy.get_param('~robots_see_each_other', True)))
+                                     bool(rospy.get_param('~robots_see_each_other', True)),
+                                     command_timeout=cmd_vel_timeout, clamp_speed=clamp_speed,
+                                     log=ROS_LOG)
         for robot in robots:
             if self.simulation.overlapping(robot):
                 rospy.logerr('%s: spawned at x %.3f y %.3f overlapping an obstacle of world %s: '
@@ -264,13 +256,15 @@ class FakeTb3Node:
                         _number(spec.get('yaw', 0.0), 'yaw'), laser)
 
     # --- what happens at each tick -------------------------------------------------------------
+    def submit(self, action):
+        """Queue action() for the tick thread, which applies it before its next tick."""
+        self._requests.append(action)
+
     def _step_physics(self, stamp):
-        for interface in self.interfaces:
-            interface.check_timeout(self.sim_ns, self.cmd_vel_timeout)
         began = self.simulation.step(1.0 / self.physics.rate)
         for interface in self.interfaces:
             if interface.robot in began:
-                interface.report_collision()
+                interface.collisions.publish(UInt32(interface.robot.collisions))
         if self.clock:
             self.clock.publish(Clock(stamp))
 
@@ -284,7 +278,7 @@ class FakeTb3Node:
 
     def _publish_imu(self, stamp):
         for interface in self.interfaces:
-            interface.publish_imu(stamp, 1.0 / self.imu_periodic.rate)
+            interface.publish_imu(stamp)
 
     def _publish_scans(self, stamp):
         for interface in self.interfaces:
@@ -297,7 +291,8 @@ class FakeTb3Node:
 
     def write_picture(self, path):
         with self.lock:
-            save_picture(self.simulation, path)
+            snapshot = self.simulation.snapshot()
+        save_picture(snapshot, path)  # drawn outside the lock: the ticks go on meanwhile
 
     def _on_save_picture(self, _request):
         path = os.path.abspath(os.path.expanduser(str(self.picture_path())))
@@ -311,20 +306,20 @@ class FakeTb3Node:
     # --- the loop ------------------------------------------------------------------------------
     def spin(self):
         """Step and publish until shutdown; simulated time runs real_time_factor x wall time."""
-        anchor_wall, anchor_ns = time.monotonic(), 0
+        pacer = Pacer(self.real_time_factor, time.monotonic())
         while not rospy.is_shutdown():
             next_ns = min(periodic.next_ns for periodic, _ in self.schedules)
-            due = anchor_wall + (next_ns - anchor_ns) / 1e9 / self.real_time_factor
+            due = pacer.due(next_ns)
             now = time.monotonic()
             while now < due and not rospy.is_shutdown():
                 time.sleep(min(due - now, 0.05))
                 now = time.monotonic()
-            if now - due > MAX_LAG:  # cannot keep up: carry on from here rather than rush
-                anchor_wall, anchor_ns = now, next_ns
+            pacer.reached(next_ns, now)
             # Simulated time starts at 0, as Gazebo's; real time stamps are the wall clock.
             stamp = rospy.Time(0, next_ns) if self.use_sim_time else rospy.Time.now()
             with self.lock:
-                self.sim_ns = next_ns
+                while self._requests:
+                    self._requests.popleft()()
                 try:
                     for periodic, action in self.schedules:
                         if periodic.next_ns == next_ns:

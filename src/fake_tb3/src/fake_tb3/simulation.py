@@ -1,4 +1,6 @@
 """Robots driving in a world: exact motion, collisions that stop at the contact, laser scans."""
+import copy
+import logging
 import math
 
 import numpy as np
@@ -9,11 +11,24 @@ from fake_tb3.kinematics import arc_poses, wheel_turns, wrap_angle
 # Longest step any point of the body may make between two overlap tests. Much smaller than the
 # body, so a moving body cannot jump over an obstacle, however thin.
 SUBSTEP_LENGTH = 0.005
-# Substeps tested at once (bounds the memory of one test, whatever the speed).
+# Substeps tested at once (bounds the memory of one test, whatever the speed). The first batch
+# near an obstacle is small, as a robot pushing on a contact overlaps at its first substep.
 SUBSTEPS_PER_BATCH = 256
-# Bisection rounds that place the body at the contact (step / 2**12 away from it).
-CONTACT_ROUNDS = 12
+FIRST_BATCH = 16
+# Where the disc around the body comes this close (m) to an obstacle, poses are tested one by one;
+# farther away the path is skipped.
+TEST_ZONE = 0.25
+# A robot in contact that moves more than this (m) before meeting an obstacle again has left the
+# first contact: the new one counts.
+CONTACT_TOLERANCE = 1e-4
+# Rounds that place the body at the contact, each testing CONTACT_SAMPLES poses spread between
+# the last clear pose and the first blocked one: it ends a substep / 64**2 away from the contact.
+CONTACT_ROUNDS = 2
+CONTACT_SAMPLES = 63
 TRAIL_SPACING = 0.02
+# m/s. No point of the body may move faster: a command that asks more is scaled down, so that
+# the pose stays a finite number (at 1e308 m/s it would overflow within two seconds).
+SPEED_OF_LIGHT = 299792458.0
 
 
 class SimRobot:
@@ -26,6 +41,8 @@ class SimRobot:
         self.laser = laser
         self.box = (model.body_offset_x, model.body_length / 2, model.body_width / 2)
         self.command = (0.0, 0.0)   # linear m/s, angular rad/s, held until the next command
+        self.command_time = 0.0     # simulated time of the latest command
+        self.timed_out = False      # stopped by the command timeout since the latest command
         self.velocity = (0.0, 0.0)  # what the robot really did over the last step
         self.wheel_angles = (0.0, 0.0)  # left, right, rad
         self.in_contact = False
@@ -36,6 +53,11 @@ class SimRobot:
         self.trail = [(self.x, self.y)]
         self.last_scan = None  # (x, y, yaw of the laser, ranges) of the latest scan
         self._outline_pose = self._outline = None
+
+    @property
+    def label(self):
+        """The name in log lines."""
+        return self.name or 'robot'
 
     @property
     def pose(self):
@@ -60,48 +82,75 @@ def sweep(robot, dt):
 
 
 def _first_overlap(robot, dt, segments, circles):
-    """Fraction of the step (0..1] at which the body first overlaps an obstacle, None if never.
+    """(blocked, free, near_segments, near_circles): the fractions of the step of the first tested
+    pose that overlaps an obstacle and of the one before it, and the obstacles near them; None if
+    the path is clear.
 
-    Returns (blocked_fraction, free_fraction): the substep that overlaps and the one before it.
+    The cost is bounded whatever the speed. A command held over a step turns the body about a
+    fixed centre, so after one full turn it is back where it started: at most one turn is tested.
+    The body stays within body_corner_radius of its base point; where that disc is farther than
+    TEST_ZONE from every obstacle, the path is skipped for as far as the base point can go without
+    the disc touching anything (conservative advancement: steps grow as the path leaves the
+    obstacles behind). Only near obstacles are poses tested, SUBSTEP_LENGTH apart for the fastest
+    point of the body, in batches.
     """
-    model = robot.model
     linear, angular = robot.command
+    radius = robot.model.body_corner_radius
+    base_travel = abs(linear) * dt  # path of the base point over the whole step
+    end = 1.0
+    if angular * dt:
+        end = min(1.0, 2 * math.pi / abs(angular * dt))
     travel = sweep(robot, dt)
-    substeps = max(1, math.ceil(travel / SUBSTEP_LENGTH))
-    for first in range(0, substeps, SUBSTEPS_PER_BATCH):
-        count = min(SUBSTEPS_PER_BATCH, substeps - first)
-        fractions = np.arange(first + 1, first + count + 1) / substeps
-        # Only the obstacles this batch can reach: around the middle of its path.
-        mid_x, mid_y, _ = arc_poses(robot.x, robot.y, robot.yaw, linear, angular,
-                                    dt * (first + count / 2) / substeps)
-        reach = travel * count / substeps / 2 + model.body_corner_radius
-        near_segments, near_circles = nearby(segments, circles, float(mid_x), float(mid_y), reach)
-        if not len(near_segments) and not len(near_circles):
+    if not travel:
+        return None
+    substep = SUBSTEP_LENGTH / travel
+    start, batch = 0.0, FIRST_BATCH
+    while start < end:
+        x, y, _ = arc_poses(robot.x, robot.y, robot.yaw, linear, angular, start * dt)
+        x, y = float(x), float(y)
+        free = clearance(x, y, segments, circles) - radius
+        if free > TEST_ZONE:
+            if not base_travel:  # the base point stays: the disc stays clear
+                return None
+            start += free / base_travel
             continue
-        poses = arc_poses(robot.x, robot.y, robot.yaw, linear, angular, fractions * dt)
-        overlap = boxes_overlap(poses, robot.box, near_segments, near_circles)
-        if overlap.any():
-            index = int(np.argmax(overlap))
-            return fractions[index], (fractions[index - 1] if index else first / substeps)
+        count = max(1, min(batch, math.ceil((end - start) / substep)))
+        batch = min(4 * batch, SUBSTEPS_PER_BATCH)
+        fractions = np.minimum(start + substep * np.arange(1, count + 1), end)
+        # Only the obstacles this batch can reach: its base point moves at most count substeps.
+        near_segments, near_circles = nearby(segments, circles, x, y,
+                                             count * SUBSTEP_LENGTH + radius)
+        if len(near_segments) or len(near_circles):
+            poses = arc_poses(robot.x, robot.y, robot.yaw, linear, angular, fractions * dt)
+            overlap = boxes_overlap(poses, robot.box, near_segments, near_circles)
+            if overlap.any():
+                index = int(np.argmax(overlap))
+                return (fractions[index], (fractions[index - 1] if index else start),
+                        near_segments, near_circles)
+        start = float(fractions[-1])
     return None
 
 
-def _contact_fraction(robot, linear, angular, dt, blocked, free, segments, circles):
-    """Largest fraction in [free, blocked) where the body is still clear, by bisection."""
+def _contact_fraction(robot, dt, blocked, free, segments, circles):
+    """Largest fraction in [free, blocked) where the body is still clear, to a 64**2th."""
+    linear, angular = robot.command
     for _ in range(CONTACT_ROUNDS):
-        middle = (free + blocked) / 2
-        pose = arc_poses(robot.x, robot.y, robot.yaw, linear, angular, middle * dt)
-        if boxes_overlap(pose, robot.box, segments, circles)[0]:
-            blocked = middle
+        fractions = np.linspace(free, blocked, CONTACT_SAMPLES + 2)[1:-1]
+        poses = arc_poses(robot.x, robot.y, robot.yaw, linear, angular, fractions * dt)
+        overlap = boxes_overlap(poses, robot.box, segments, circles)
+        if overlap.any():
+            index = int(np.argmax(overlap))
+            blocked, free = fractions[index], (fractions[index - 1] if index else free)
         else:
-            free = middle
+            free = fractions[-1]
     return free
 
 
-def drive(robot, dt, segments, circles):
+def step_robot(robot, dt, segments, circles):
     """Move `robot` for dt seconds with its command, stopping at the first contact.
 
-    Returns True when this step began a new contact (the robot was free before).
+    Returns True when this step began a new contact: the robot was free before, or it left the
+    contact it was in (moved more than CONTACT_TOLERANCE) and met an obstacle again.
     """
     linear, angular = robot.command
     if dt <= 0:
@@ -111,7 +160,7 @@ def drive(robot, dt, segments, circles):
     if travel > robot.free_travel:
         overlap = _first_overlap(robot, dt, segments, circles)
         if overlap is not None:
-            fraction = _contact_fraction(robot, linear, angular, dt, *overlap, segments, circles)
+            fraction = _contact_fraction(robot, dt, *overlap)
         robot.free_travel = 0.0
     robot.free_travel -= travel * fraction
     duration = fraction * dt
@@ -123,7 +172,8 @@ def drive(robot, dt, segments, circles):
     last_x, last_y = robot.trail[-1]
     if math.hypot(robot.x - last_x, robot.y - last_y) >= TRAIL_SPACING:
         robot.trail.append((robot.x, robot.y))
-    began_contact = fraction < 1.0 and not robot.in_contact
+    began_contact = fraction < 1.0 and (not robot.in_contact
+                                        or travel * fraction > CONTACT_TOLERANCE)
     if fraction < 1.0:
         robot.in_contact = True
         robot.collisions += began_contact
@@ -135,14 +185,70 @@ def drive(robot, dt, segments, circles):
     return began_contact
 
 
+class CommandError(ValueError):
+    """A velocity command the simulator refuses; the text says why."""
+
+
 class Simulation:
     """A world and the robots in it. Robots see and hit each other's bodies when
-    `robots_see_each_other` (they never overlap then)."""
+    `robots_see_each_other` (they never overlap then).
 
-    def __init__(self, world, robots, robots_see_each_other=True):
+    The caller drives it: velocity commands through command() between steps, then step(dt).
+    A robot that gets no command for `command_timeout` simulated seconds stops (0: never, as in
+    Gazebo); with `clamp_speed` commands are limited to the model's maximum speeds. Log lines go
+    to `log`, an object with info() and warning() (a logging.Logger will do).
+    """
+
+    def __init__(self, world, robots, robots_see_each_other=True, command_timeout=0.0,
+                 clamp_speed=False, log=None):
         self.world = world
         self.robots = list(robots)
         self.robots_see_each_other = robots_see_each_other
+        if not (command_timeout >= 0 and math.isfinite(command_timeout)):
+            raise ValueError('command timeout must be a finite number >= 0, got %r'
+                             % (command_timeout,))
+        self.command_timeout = command_timeout
+        self.clamp_speed = clamp_speed
+        self.log = log or logging.getLogger('fake_tb3')
+        self.time = 0.0  # simulated seconds since the start
+
+    def command(self, robot, linear, angular):
+        """Make (linear m/s, angular rad/s) `robot`'s command from now until the next one.
+
+        Raises CommandError for a NaN or infinite velocity (the previous command holds). Returns
+        None, or the text of a warning when the command was limited: to the model's maximum with
+        clamp_speed, and always so that no point of the body outruns light (a faster command
+        keeps its path; its speeds are scaled down together).
+        """
+        if not (math.isfinite(linear) and math.isfinite(angular)):
+            raise CommandError('%s: ignoring cmd_vel with a non-finite velocity (linear.x %s, '
+                               'angular.z %s)' % (robot.label, linear, angular))
+        notice = None
+        if self.clamp_speed:
+            linear, angular = robot.model.clamp(linear, angular)
+        # In units of light speed, so that adding them cannot overflow.
+        fastest = (abs(linear) / SPEED_OF_LIGHT
+                   + abs(angular) * (robot.model.body_corner_radius / SPEED_OF_LIGHT))
+        if fastest > 1.0:
+            notice = ('%s: cmd_vel linear.x %g m/s, angular.z %g rad/s would move the body '
+                      'faster than light; limited to linear.x %g, angular.z %g (same path)'
+                      % (robot.label, linear, angular, linear / fastest, angular / fastest))
+            linear, angular = linear / fastest, angular / fastest
+        robot.command = (float(linear), float(angular))
+        robot.command_time = self.time
+        robot.timed_out = False
+        return notice
+
+    def _stop_silent_robots(self):
+        """Stop the robots that got no command for command_timeout seconds."""
+        for robot in self.robots:
+            if (not robot.timed_out
+                    and self.time - robot.command_time > self.command_timeout):
+                robot.timed_out = True
+                if robot.command != (0.0, 0.0):
+                    robot.command = (0.0, 0.0)
+                    self.log.info('%s: no cmd_vel for %.2f s, stopping'
+                                  % (robot.label, self.command_timeout))
 
     def obstacles_for(self, robot):
         """(segments, circles) that `robot` sees and hits."""
@@ -157,13 +263,33 @@ class Simulation:
         return bool(boxes_overlap(robot.pose, robot.box, *self.obstacles_for(robot))[0])
 
     def step(self, dt):
-        """Advance every robot by dt seconds; returns the robots that began a contact."""
+        """Advance every robot by dt seconds; returns the robots that began a contact (each one
+        is also logged as a warning)."""
+        if self.command_timeout > 0:
+            self._stop_silent_robots()
         if self.robots_see_each_other and len(self.robots) > 1:
             # What the others may travel comes out of each robot's free travel too.
             travels = [sweep(robot, dt) for robot in self.robots]
             for robot, travel in zip(self.robots, travels):
                 robot.free_travel -= sum(travels) - travel
-        return [robot for robot in self.robots if drive(robot, dt, *self.obstacles_for(robot))]
+        began = [robot for robot in self.robots
+                 if step_robot(robot, dt, *self.obstacles_for(robot))]
+        self.time += dt
+        for robot in began:
+            self.log.warning('%s: collision at x %.3f y %.3f yaw %.3f: the body touches an '
+                             'obstacle (collision %d)'
+                             % (robot.label, robot.x, robot.y, robot.yaw, robot.collisions))
+        return began
+
+    def snapshot(self):
+        """A copy of what a picture shows (the world, the robots' poses, trails and latest scans)
+        to draw while the simulation goes on."""
+        robots = []
+        for robot in self.robots:
+            robot_copy = copy.copy(robot)
+            robot_copy.trail = list(robot.trail)
+            robots.append(robot_copy)
+        return Simulation(self.world, robots, self.robots_see_each_other)
 
     def scan(self, robot):
         """A laser scan of `robot` now (ranges array), also kept as robot.last_scan."""

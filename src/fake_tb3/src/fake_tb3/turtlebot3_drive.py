@@ -46,8 +46,9 @@ def read_beams(scan_ranges, angle_min, angle_increment, range_max):
     return None if None in distances else distances
 
 
-class Wanderer:
-    """Decides the next (linear, angular) command from the latest beams and the current yaw."""
+class Turtlebot3Drive:
+    """The wanderer of turtlebot3_simulation: decides the next (linear, angular) command from the
+    latest beams and the current yaw."""
 
     def __init__(self):
         self.turn_direction = 0  # +1 left, -1 right, 0 not turning

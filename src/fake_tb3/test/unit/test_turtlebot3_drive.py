@@ -1,9 +1,11 @@
-"""The wanderer: turtlebot3_drive's decisions, its fixed weaknesses, 120 s without a collision."""
+"""The wanderer (Turtlebot3Drive): turtlebot3_drive's decisions, its fixed weaknesses, 120 s
+without a collision."""
 import math
 
 import pytest
 
-from fake_tb3.drive import ANGULAR_SPEED, LINEAR_SPEED, Wanderer, read_beams
+from fake_tb3.turtlebot3_drive import (ANGULAR_SPEED, LINEAR_SPEED, Turtlebot3Drive,
+                                      read_beams)
 from fake_tb3.lidar import LDS_01, Laser
 from fake_tb3.models import get_model
 from fake_tb3.simulation import SimRobot, Simulation
@@ -38,16 +40,16 @@ def test_short_or_odd_scans_do_not_crash():
 
 def test_decisions():
     beams = lambda ranges: read_beams(ranges, 0.0, INCREMENT, 3.5)  # noqa: E731
-    assert Wanderer().command(None, 0.0) == (0.0, 0.0)  # no scan yet: no spinning
-    assert Wanderer().command(beams(scan()), 0.0) == (LINEAR_SPEED, 0.0)
-    assert Wanderer().command(beams(scan(front=0.69)), 0.0) == (0.0, -ANGULAR_SPEED)
-    assert Wanderer().command(beams(scan(left=0.59)), 0.0) == (0.0, -ANGULAR_SPEED)
-    assert Wanderer().command(beams(scan(right=0.59)), 0.0) == (0.0, ANGULAR_SPEED)
-    assert Wanderer().command(beams(scan(left=0.61, right=0.61)), 0.0) == (LINEAR_SPEED, 0.0)
+    assert Turtlebot3Drive().command(None, 0.0) == (0.0, 0.0)  # no scan yet: no spinning
+    assert Turtlebot3Drive().command(beams(scan()), 0.0) == (LINEAR_SPEED, 0.0)
+    assert Turtlebot3Drive().command(beams(scan(front=0.69)), 0.0) == (0.0, -ANGULAR_SPEED)
+    assert Turtlebot3Drive().command(beams(scan(left=0.59)), 0.0) == (0.0, -ANGULAR_SPEED)
+    assert Turtlebot3Drive().command(beams(scan(right=0.59)), 0.0) == (0.0, ANGULAR_SPEED)
+    assert Turtlebot3Drive().command(beams(scan(left=0.61, right=0.61)), 0.0) == (LINEAR_SPEED, 0.0)
 
 
 def test_a_turn_lasts_30_degrees_across_the_yaw_wrap():
-    wanderer = Wanderer()
+    wanderer = Turtlebot3Drive()
     blocked = read_beams(scan(right=0.3), 0.0, INCREMENT, 3.5)
     clear = read_beams(scan(), 0.0, INCREMENT, 3.5)
     start = math.pi - 0.1  # turning left crosses +pi -> -pi
@@ -61,7 +63,7 @@ def test_wanders_120_s_in_turtlebot3_world_without_a_collision(model, x, y, yaw)
     # The ROS timing: scans at 5 Hz, a decision at each odom (30 Hz), physics at 100 Hz.
     robot = SimRobot('', get_model(model), x, y, yaw, Laser(seed=7))
     simulation = Simulation(load_world('turtlebot3_world'), [robot])
-    wanderer, beams, travelled = Wanderer(), None, 0.0
+    wanderer, beams, travelled = Turtlebot3Drive(), None, 0.0
     for tick in range(1, 12001):
         if tick % 20 == 0:
             beams = read_beams(list(simulation.scan(robot)), 0.0, INCREMENT, 3.5)

@@ -1,5 +1,5 @@
-"""ROS layer of the wanderer (turtlebot3_drive behaviour): scan and odom in, Twist out on the
-topic named by the global parameter cmd_vel_topic_name."""
+"""ROS layer of the wanderer (Turtlebot3Drive, the turtlebot3_drive behaviour): scan and odom in,
+Twist out on the topic named by the global parameter cmd_vel_topic_name."""
 import math
 import threading
 
@@ -8,12 +8,12 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 
-from fake_tb3.drive import Wanderer, read_beams
+from fake_tb3.turtlebot3_drive import Turtlebot3Drive, read_beams
 
 
 class DriveNode:
     def __init__(self):
-        self.wanderer = Wanderer()
+        self.drive = Turtlebot3Drive()
         self.beams = None
         self.lock = threading.Lock()  # the last command must be the stop at shutdown
         self.stopped = False
@@ -39,7 +39,7 @@ class DriveNode:
         q = odom.pose.pose.orientation
         yaw = math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
         twist = Twist()
-        twist.linear.x, twist.angular.z = self.wanderer.command(self.beams, yaw)
+        twist.linear.x, twist.angular.z = self.drive.command(self.beams, yaw)
         with self.lock:
             if not self.stopped:
                 self.publisher.publish(twist)
