@@ -20,8 +20,8 @@ import xmlrpc.client
 import rosgraph
 import rospy
 
-from course_common.processes import free_port, stop_process_group
-from course_common.testing import wait_until
+from course_testing.processes import free_port, stop_process_group
+from course_testing.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn
 

@@ -7,8 +7,8 @@ but nothing new connects until the user starts the nodes again.
 """
 import pytest
 
-import faults
-import scenarios
+from course_testing.network import faults
+from course_testing.network import scenarios
 
 
 @pytest.fixture(scope='module')

@@ -10,7 +10,7 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 
-from course_common.testing import wait_until
+from course_testing.waiting import wait_until
 from rostest_helpers import Recorder, lookup
 
 SPAWNS = {'tb3_0': (-7.0, -1.0, 1.57), 'tb3_1': (7.0, -1.0, 1.57), 'tb3_2': (0.5, 3.0, 0.0)}

@@ -12,7 +12,7 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, JointState, LaserScan
 
-from course_common.testing import wait_until
+from course_testing.waiting import wait_until
 from rostest_helpers import Recorder, lookup
 
 WINDOW = 8.0  # wall seconds over which rates are measured

@@ -19,7 +19,7 @@ from sensor_msgs.msg import JointState, LaserScan
 from std_msgs.msg import UInt32
 from std_srvs.srv import Trigger
 
-from course_common.testing import wait_until
+from course_testing.waiting import wait_until
 from rostest_helpers import Recorder, rosout_lines
 
 REAL_TIME_FACTOR = 10.0

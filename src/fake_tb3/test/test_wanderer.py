@@ -10,7 +10,7 @@ import rostest
 from nav_msgs.msg import Odometry
 from std_msgs.msg import UInt32
 
-from course_common.testing import wait_until
+from course_testing.waiting import wait_until
 from rostest_helpers import Recorder
 
 

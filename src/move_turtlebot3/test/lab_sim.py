@@ -14,8 +14,8 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import UInt32
 
-from course_common.processes import stop_process_group
-from course_common.testing import wait_until
+from course_testing.processes import stop_process_group
+from course_testing.waiting import wait_until
 
 
 def node_names():

@@ -9,7 +9,7 @@ import rostest
 from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty
 
-from course_common.testing import wait_until
+from course_testing.waiting import wait_until
 from turtle_watch import POSE_LINE, POSE_RATE_HZ, PoseWatch, PrintingNode, duration, path_length, turned
 
 FORWARD_SPEED_MPS = 0.5

@@ -10,7 +10,8 @@ import rostest
 from PIL import Image
 from std_srvs.srv import Trigger
 
-from course_common.testing import PtyProgram, wait_until
+from course_testing.processes import PtyProgram
+from course_testing.waiting import wait_until
 from turtle_watch import PoseWatch, hold_key, path_length, turned
 
 SIDE_M = 1.5

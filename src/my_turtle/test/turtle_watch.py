@@ -7,7 +7,8 @@ import time
 import rospy
 from turtlesim.msg import Pose
 
-from course_common.testing import PtyProgram, wait_until
+from course_testing.processes import PtyProgram
+from course_testing.waiting import wait_until
 
 POSE_RATE_HZ = 62.5  # turtlesim publishes the pose at every 16 ms tick
 # A pose line as the slide shows it, e.g. "[ INFO] [1513815819.814175430]: x: 8.46, y: 5.54"

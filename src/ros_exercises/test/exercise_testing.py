@@ -9,8 +9,9 @@ import rospy
 from std_srvs.srv import Trigger
 from turtlesim.msg import Pose
 
-from course_common.processes import stop_process_group
-from course_common.testing import PtyProgram, wait_until
+from course_testing.processes import stop_process_group
+from course_testing.processes import PtyProgram
+from course_testing.waiting import wait_until
 
 
 class Command:

@@ -10,7 +10,7 @@ import rospy
 import rostest
 from geometry_msgs.msg import Twist
 
-from course_common.testing import wait_until
+from course_testing.waiting import wait_until
 from exercise_testing import Command, PoseRecorder
 import figures
 

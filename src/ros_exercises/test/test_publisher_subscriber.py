@@ -8,7 +8,7 @@ import rospy
 import rostest
 from std_msgs.msg import Int32
 
-from course_common.testing import wait_until
+from course_testing.waiting import wait_until
 
 from exercise_testing import Command, run
 

@@ -9,7 +9,7 @@ import rospy
 import rostest
 from turtlesim.srv import Kill
 
-from course_common.testing import wait_until
+from course_testing.waiting import wait_until
 from exercise_testing import Command, PoseRecorder, run
 
 

@@ -7,7 +7,7 @@ import unittest
 import rospy
 import rostest
 
-from course_common.testing import wait_until
+from course_testing.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim_testing import Recorder, RosoutWatcher
 

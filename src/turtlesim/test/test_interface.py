@@ -14,7 +14,7 @@ from PIL import Image as PilImage
 from sensor_msgs.msg import Image
 from std_srvs.srv import Empty, Trigger
 
-from course_common.testing import wait_until
+from course_testing.waiting import wait_until
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
 from turtlesim_testing import (Recorder, RosoutWatcher, connected_publisher, graph, moved, published_topics,

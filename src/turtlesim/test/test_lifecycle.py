@@ -11,8 +11,8 @@ import rospy
 import rostest
 from PIL import Image as PilImage
 
-from course_common.screen import VirtualScreen
-from course_common.testing import wait_until
+from course_testing.screen import VirtualScreen
+from course_testing.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import SetPen, TeleportAbsolute
 from turtlesim_testing import Recorder, graph, published_topics

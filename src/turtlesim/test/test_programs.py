@@ -7,7 +7,8 @@ import unittest
 import rospy
 import rostest
 
-from course_common.testing import PtyProgram, wait_until
+from course_testing.processes import PtyProgram
+from course_testing.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn, TeleportAbsolute
 from turtlesim_testing import Recorder, moved, publishes_to, wait_until_still

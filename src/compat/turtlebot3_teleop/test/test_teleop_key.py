@@ -11,7 +11,8 @@ import rospy
 import rostest
 from geometry_msgs.msg import Twist
 
-from course_common.testing import PtyProgram, wait_until
+from course_testing.processes import PtyProgram
+from course_testing.waiting import wait_until
 
 NODE = '/turtlebot3_teleop_keyboard'
 

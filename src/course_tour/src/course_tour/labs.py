@@ -13,8 +13,9 @@ from std_msgs.msg import UInt32
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill
 
-from course_common.screen import VirtualScreen, can_make_screens, red_pixels
-from course_common.testing import PtyProgram, wait_until
+from course_testing.processes import PtyProgram
+from course_testing.screen import VirtualScreen, can_make_screens, red_pixels
+from course_testing.waiting import wait_until
 from course_tour.session import Recorder, path_length
 
 LabReport = collections.namedtuple('LabReport', 'lines pictures')

@@ -12,8 +12,8 @@ import threading
 import rosgraph
 import rospy
 
-from course_common.processes import free_port, stop_process_group
-from course_common.testing import wait_until
+from course_testing.processes import free_port, stop_process_group
+from course_testing.waiting import wait_until
 
 
 ROSCORE_PARAMS = {'/run_id', '/rosdistro', '/rosversion'}

@@ -17,11 +17,12 @@ import xmlrpc.client
 
 import rosgraph
 
-from course_common.processes import stop_process_group
-from course_common.testing import wait_until
+from course_testing.processes import stop_process_group
+from course_testing.waiting import wait_until
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 HERE = os.path.dirname(os.path.abspath(__file__))
+# The workspace: this file is src/course_testing/src/course_testing/network/rosnet.py in it.
+ROOT = os.path.abspath(os.path.join(HERE, *[os.pardir] * 5))
 PYTHON = '/usr/bin/python3'
 ENV_SCRIPT = os.path.join(ROOT, 'tools', 'env.sh')
 # Variables a caller's shell may carry that would change what tools/env.sh gives a fresh shell.
@@ -156,7 +157,7 @@ def master_is_online(uri):
 
 
 # Waits, inside a network namespace, until the master of ROS_MASTER_URI answers.
-WAIT_FOR_MASTER = ('import rosgraph\nfrom course_common.testing import wait_until\n'
+WAIT_FOR_MASTER = ('import rosgraph\nfrom course_testing.waiting import wait_until\n'
                    'wait_until(rosgraph.is_master_online, 20, "the master of ROS_MASTER_URI", poll=0.1)\n')
 
 

@@ -2,7 +2,7 @@ import itertools
 
 import pytest
 
-from course_common.testing import wait_until
+from course_testing.waiting import wait_until
 
 
 def test_wait_until_returns_the_first_true_value():
