@@ -44,12 +44,6 @@ def project_environment(**given):
     return dict(_sourced_environment(tuple(sorted(given.items()))))
 
 
-def free_port():
-    with socket.socket() as probe:
-        probe.bind(('127.0.0.1', 0))
-        return probe.getsockname()[1]
-
-
 class Process:
     """A child in its own process group, its output in a log file."""
 
