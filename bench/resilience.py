@@ -14,9 +14,7 @@ import sys
 import tempfile
 import traceback
 
-from course_testing.network import faults
-from course_testing.network import netns
-from course_testing.network import scenarios
+from course_testing.network import faults, netns, scenarios
 from course_testing.network.rosnet import Processes, is_loopback
 
 

@@ -7,8 +7,7 @@ but nothing new connects until the user starts the nodes again.
 """
 import pytest
 
-from course_testing.network import faults
-from course_testing.network import scenarios
+from course_testing.network import faults, scenarios
 
 
 @pytest.fixture(scope='module')

@@ -10,8 +10,9 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 
+from course_testing.recording import TopicRecorder
 from course_testing.waiting import wait_until
-from rostest_helpers import Recorder, lookup
+from rostest_helpers import lookup
 
 SPAWNS = {'tb3_0': (-7.0, -1.0, 1.57), 'tb3_1': (7.0, -1.0, 1.57), 'tb3_2': (0.5, 3.0, 0.0)}
 
@@ -24,8 +25,8 @@ class MultiTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('multi_test')
-        cls.odom = {name: Recorder('/%s/odom' % name, Odometry) for name in SPAWNS}
-        cls.scan = {name: Recorder('/%s/scan' % name, LaserScan) for name in SPAWNS}
+        cls.odom = {name: TopicRecorder('/%s/odom' % name, Odometry) for name in SPAWNS}
+        cls.scan = {name: TopicRecorder('/%s/scan' % name, LaserScan) for name in SPAWNS}
         cls.tf_buffer = tf2_ros.Buffer()
         cls.tf_listener = tf2_ros.TransformListener(cls.tf_buffer)
         recorders = list(cls.odom.values()) + list(cls.scan.values())

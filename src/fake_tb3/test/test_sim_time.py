@@ -19,8 +19,9 @@ from sensor_msgs.msg import JointState, LaserScan
 from std_msgs.msg import UInt32
 from std_srvs.srv import Trigger
 
+from course_testing.recording import TopicRecorder
 from course_testing.waiting import wait_until
-from rostest_helpers import Recorder, rosout_lines
+from rostest_helpers import rosout_lines, stamp_rate
 
 REAL_TIME_FACTOR = 10.0
 # The body's front is 0.038 m ahead of base_footprint (burger box 0.14 m centred at -0.032).
@@ -31,12 +32,12 @@ class SimTimeTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('sim_time_test')
-        cls.clock = Recorder('/clock', Clock)
-        cls.odom = Recorder('/odom', Odometry)
-        cls.joint_states = Recorder('/joint_states', JointState)
-        cls.scan = Recorder('/scan', LaserScan)
-        cls.collisions = Recorder('/collisions', UInt32)
-        cls.rosout = Recorder('/rosout', Log)
+        cls.clock = TopicRecorder('/clock', Clock)
+        cls.odom = TopicRecorder('/odom', Odometry)
+        cls.joint_states = TopicRecorder('/joint_states', JointState)
+        cls.scan = TopicRecorder('/scan', LaserScan)
+        cls.collisions = TopicRecorder('/collisions', UInt32)
+        cls.rosout = TopicRecorder('/rosout', Log)
         cls.cmd_vel = rospy.Publisher('/cmd_vel', Twist, queue_size=1)
         wait_until(lambda: cls.scan.latest() and cls.odom.latest() and cls.collisions.latest(), 30,
                    'scan, odom and collisions')
@@ -68,9 +69,9 @@ class SimTimeTest(unittest.TestCase):
         end = start + rospy.Duration(10)
         wait_until(lambda: self.odom.latest().header.stamp > end + rospy.Duration(0.5), 30,
                    '11.5 simulated seconds')
-        self.assertAlmostEqual(self.scan.stamp_rate(start, end), 5.0, delta=0.1)
-        self.assertAlmostEqual(self.odom.stamp_rate(start, end), 30.0, delta=0.3)
-        self.assertAlmostEqual(self.joint_states.stamp_rate(start, end), 30.0, delta=0.3)
+        self.assertAlmostEqual(stamp_rate(self.scan, start, end), 5.0, delta=0.1)
+        self.assertAlmostEqual(stamp_rate(self.odom, start, end), 30.0, delta=0.3)
+        self.assertAlmostEqual(stamp_rate(self.joint_states, start, end), 30.0, delta=0.3)
 
     def test_04_drives_into_the_wall_and_stops_at_the_contact(self):
         self.drive(1.0)
