@@ -12,7 +12,7 @@ from sensor_msgs.msg import LaserScan
 
 from course_testing.recording import TopicRecorder
 from course_testing.waiting import wait_until
-from rostest_helpers import lookup
+from fake_tb3_testing import lookup
 
 SPAWNS = {'tb3_0': (-7.0, -1.0, 1.57), 'tb3_1': (7.0, -1.0, 1.57), 'tb3_2': (0.5, 3.0, 0.0)}
 

@@ -14,7 +14,7 @@ from sensor_msgs.msg import Imu, JointState, LaserScan
 
 from course_testing.recording import TopicRecorder
 from course_testing.waiting import wait_until
-from rostest_helpers import lookup
+from fake_tb3_testing import lookup
 
 WINDOW = 8.0  # wall seconds over which rates are measured
 

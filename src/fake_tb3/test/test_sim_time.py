@@ -21,7 +21,7 @@ from std_srvs.srv import Trigger
 
 from course_testing.recording import TopicRecorder
 from course_testing.waiting import wait_until
-from rostest_helpers import rosout_lines, stamp_rate
+from fake_tb3_testing import rosout_lines, stamp_rate
 
 REAL_TIME_FACTOR = 10.0
 # The body's front is 0.038 m ahead of base_footprint (burger box 0.14 m centred at -0.032).

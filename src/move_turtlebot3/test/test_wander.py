@@ -9,7 +9,7 @@ import rostest
 from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Trigger
 
-from lab_sim import LabTestCase, Launch, LoneNode, largest_move, node_names, travelled
+from move_turtlebot3_testing import LabTestCase, Launch, LoneNode, largest_move, node_names, travelled
 
 CELL = 0.5  # m: side of the squares counted as visited
 

@@ -10,7 +10,7 @@ from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty
 
 from course_testing.waiting import wait_until
-from turtle_watch import POSE_LINE, POSE_RATE_HZ, PrintingNode, duration, travelled, turned, turtle1_poses
+from my_turtle_testing import POSE_LINE, POSE_RATE_HZ, PrintingNode, duration, travelled, turned, turtle1_poses
 
 FORWARD_SPEED_MPS = 0.5
 SPEED_TOLERANCE = 0.02  # relative

@@ -11,7 +11,7 @@ import rostest
 from geometry_msgs.msg import Twist
 
 from course_testing.waiting import wait_until
-from exercise_testing import Command, pose_array, turtle_poses
+from ros_exercises_testing import Command, pose_array, turtle_poses
 import figures
 
 TURTLE1_START = (5.544445, 5.544445)

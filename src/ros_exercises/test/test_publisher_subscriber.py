@@ -9,7 +9,7 @@ from std_msgs.msg import Int32
 
 from course_testing.recording import TopicRecorder
 
-from exercise_testing import Command, run
+from ros_exercises_testing import Command, run
 
 FAST_ID = '4095127'
 SLOW_ID = '907'

@@ -15,7 +15,7 @@ import rospy
 import rostest
 from turtlesim.srv import Kill
 
-from exercise_testing import Command, pose_array, save_canvas, turtle_poses
+from ros_exercises_testing import Command, pose_array, save_canvas, turtle_poses
 import figures
 
 TOLERANCE = 0.05  # metres

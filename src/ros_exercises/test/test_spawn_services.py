@@ -10,7 +10,7 @@ import rostest
 from turtlesim.srv import Kill
 
 from course_testing.waiting import wait_until
-from exercise_testing import Command, run, turtle_poses
+from ros_exercises_testing import Command, run, turtle_poses
 
 
 def spawn_turtle(node_name, *arguments):
