@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Benchmark of fake_tb3: prints a table of the three numbers issue 5 sets targets for.
+"""Benchmark of fake_tb3: prints a table of the three numbers it has targets for.
 
   1. time per 360-beam LDS-01 scan in turtlebot3_world (pure core, no ROS);
   2. the highest real-time factor one robot reaches with every topic published at its simulated

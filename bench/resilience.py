@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Resilience of the workspace (issue 8), measured and printed as Markdown tables.
+"""Resilience of the workspace, measured and printed as Markdown tables.
 
     source tools/env.sh && /usr/bin/python3 bench/resilience.py [--no-two-hosts]
 
