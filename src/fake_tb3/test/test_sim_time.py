@@ -48,15 +48,24 @@ class SimTimeTest(unittest.TestCase):
         twist.linear.x, twist.angular.z = linear, angular
         self.cmd_vel.publish(twist)
 
-    def test_01_scan_sees_the_wall_exactly(self):
-        # Laser 0.032 m behind base_footprint at the origin, wall face at x = 2.0.
-        scan = self.scan.latest()
+    def stopped_away_from_the_wall(self):
+        """Whatever the tests before left (the robot pushing on the wall, backing off): stopped, the
+        wall 1 m or more ahead."""
+        self.drive(-0.5)
+        wait_until(lambda: self.odom.latest().pose.pose.position.x <= 1.0, 30, 'backing away from the wall')
+        self.drive(0.0)
+        wait_until(lambda: self.odom.latest().twist.twist.linear.x == 0.0, 10, 'the robot stopped')
+
+    def test_scan_sees_the_wall_exactly(self):
+        # Laser 0.032 m behind base_footprint at the origin, wall face at x = 2.0: the first scan,
+        # from the spawn pose, before any test drove.
+        scan = self.scan.messages()[0]
         self.assertAlmostEqual(scan.ranges[0], 2.032, places=5)
         self.assertAlmostEqual(scan.ranges[30], 2.032 / math.cos(30 * scan.angle_increment),
                                places=4)
         self.assertEqual(scan.ranges[180], math.inf)
 
-    def test_02_clock_runs_at_the_real_time_factor(self):
+    def test_clock_runs_at_the_real_time_factor(self):
         start_wall = time.monotonic()
         start_clock = self.clock.latest().clock
         end_wall = measurement_window(4.0, start_wall)
@@ -64,7 +73,7 @@ class SimTimeTest(unittest.TestCase):
         factor = simulated / (end_wall - start_wall)
         self.assertAlmostEqual(factor, REAL_TIME_FACTOR, delta=0.15 * REAL_TIME_FACTOR)
 
-    def test_03_rates_in_simulated_time(self):
+    def test_rates_in_simulated_time(self):
         start = self.clock.latest().clock + rospy.Duration(1)
         end = start + rospy.Duration(10)
         wait_until(lambda: self.odom.latest().header.stamp > end + rospy.Duration(0.5), 30,
@@ -73,7 +82,8 @@ class SimTimeTest(unittest.TestCase):
         self.assertAlmostEqual(stamp_rate(self.odom, start, end), 30.0, delta=0.3)
         self.assertAlmostEqual(stamp_rate(self.joint_states, start, end), 30.0, delta=0.3)
 
-    def test_04_drives_into_the_wall_and_stops_at_the_contact(self):
+    def test_drives_into_the_wall_and_stops_at_the_contact(self):
+        self.stopped_away_from_the_wall()
         self.drive(1.0)
         wait_until(lambda: self.collisions.latest().data == 1, 30, 'a collision')
         wait_until(lambda: self.odom.latest().twist.twist.linear.x == 0.0, 5, 'the robot stopped')
@@ -91,7 +101,8 @@ class SimTimeTest(unittest.TestCase):
                    'a scan')
         self.assertEqual(self.scan.latest().ranges[0], math.inf)
 
-    def test_05_non_finite_commands_are_refused_and_the_last_one_holds(self):
+    def test_non_finite_commands_are_refused_and_the_last_one_holds(self):
+        self.stopped_away_from_the_wall()
         self.drive(-0.5)
         wait_until(lambda: self.odom.latest().twist.twist.linear.x == -0.5, 10, 'backing off')
         wheels = wait_until(lambda: self.joint_states.latest().velocity[0] < 0
@@ -103,7 +114,8 @@ class SimTimeTest(unittest.TestCase):
         self.assertEqual(self.odom.latest().twist.twist.linear.x, -0.5)
         self.drive(0.0)
 
-    def test_06_save_picture(self):
+    def test_save_picture(self):
+        self.stopped_away_from_the_wall()
         folder = tempfile.mkdtemp()
         path = os.path.join(folder, 'top.png')
         rospy.set_param('/fake_tb3/picture_png', path)
@@ -120,7 +132,7 @@ class SimTimeTest(unittest.TestCase):
         self.assertFalse(reply.success)
         self.assertIn('cannot write', reply.message)
 
-    def test_07_bad_parameters_are_clear_errors(self):
+    def test_bad_parameters_are_clear_errors(self):
         cases = [(['_model:=burgr'], "unknown TurtleBot3 model 'burgr'"),
                  (['_world:=moon'], "no world 'moon'"),
                  (['_real_time_factor:=-2'], 'real_time_factor must be positive'),
