@@ -8,6 +8,7 @@ from course_testing.recording import TopicRecorder, path_length
 
 def test_path_length_adds_the_sides_of_the_polyline():
     assert path_length([(0, 0), (3, 4), (3, 0)]) == pytest.approx(9.0)
+    assert path_length([(0, 0), (2, 0), (2, 2), (0, 2), (0, 0)]) == pytest.approx(8.0)
     assert path_length([(1, 1)]) == 0.0
     assert path_length([]) == 0.0
 
