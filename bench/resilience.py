@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""Resilience of the workspace (issue 8), measured and printed as Markdown tables.
+"""Resilience of the workspace, measured and printed as Markdown tables.
 
     source tools/env.sh && /usr/bin/python3 bench/resilience.py [--no-two-hosts]
 
 What listens where, load held (10 000 cmd_vel a second: the rate reached, the rates kept), bad inputs
 tried, faults survived, the link between two hosts cut and restored (root only), NaN published, and
-a summary. Runs the scenarios of tests/network/ (about two minutes); a scenario that fails shows as
-FAILED in its row instead of a number.
+a summary. Runs the scenarios of course_testing.network, as tests/network/ does (about two minutes);
+a scenario that fails shows as FAILED in its row instead of a number.
 """
 import argparse
 import os
@@ -14,13 +14,8 @@ import sys
 import tempfile
 import traceback
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
-                                'tests', 'network'))
-
-import faults  # noqa: E402
-import netns  # noqa: E402
-import scenarios  # noqa: E402
-from rosnet import Processes, is_loopback  # noqa: E402
+from course_testing.network import faults, netns, scenarios
+from course_testing.network.rosnet import Processes, is_loopback
 
 
 def table(title, header, rows):

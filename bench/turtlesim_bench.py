@@ -7,7 +7,7 @@ listens to the last turtle's pose, and prints a Markdown table. Run it after `so
     python3 bench/turtlesim_bench.py [--window SECONDS] [--sizes 1 100 500]
 
 The CPU share is the node's user + system time (from /proc/<pid>/stat) over the measuring window,
-in percent of one core. Targets (issue 2): 62.5 Hz, p99 gap <= 18 ms, CPU <= 3 %, 6 %, 35 %.
+in percent of one core. Targets: 62.5 Hz, p99 gap <= 18 ms, CPU <= 3 %, 6 %, 35 %.
 """
 import argparse
 import os
@@ -20,8 +20,8 @@ import xmlrpc.client
 import rosgraph
 import rospy
 
-from course_common.processes import free_port, stop_process_group
-from course_common.testing import wait_until
+from course_testing.processes import free_port, stop_process_group
+from course_testing.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn
 

@@ -7,7 +7,7 @@ import numpy
 import pytest
 from PIL import Image
 
-from course_common.screen import red_pixels
+from course_testing.screen import red_pixels
 
 TURTLESIM_BACKGROUND = (69, 86, 255)
 PEN = (179, 184, 255)

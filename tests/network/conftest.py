@@ -1,7 +1,7 @@
 """Fixtures of the network tests: children that are always stopped, and their logs on failure."""
 import pytest
 
-from rosnet import Processes
+from course_testing.network.rosnet import Processes
 
 
 @pytest.fixture

@@ -1,4 +1,4 @@
-"""Faults: the simulator, a course node or the master dies and is started again (issue 8).
+"""Faults: the simulator, a course node or the master dies and is started again.
 
 What recovers by itself: nodes reconnect to a restarted simulator or course node, because the master
 tells them where the new one is. What does not: a restarted master knows nothing of the nodes that
@@ -7,8 +7,7 @@ but nothing new connects until the user starts the nodes again.
 """
 import pytest
 
-import faults
-import scenarios
+from course_testing.network import faults, scenarios
 
 
 @pytest.fixture(scope='module')

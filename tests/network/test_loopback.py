@@ -3,8 +3,8 @@ library's own rules are tested in src/ros_loopback/test/unit; that it leaves two
 alone, with real ROS nodes, in test_two_hosts.py)."""
 import os
 
-import scenarios
-from rosnet import is_loopback, project_environment
+from course_testing.network import scenarios
+from course_testing.network.rosnet import is_loopback, project_environment
 
 
 def test_project_environment_preloads_the_library():

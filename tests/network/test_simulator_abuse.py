@@ -3,8 +3,8 @@
 One master and one simulator for all the tests of a simulator, as a long session would have."""
 import pytest
 
-import scenarios
-from scenarios import FLOOD_RATE, RATE_TOLERANCE
+from course_testing.network import scenarios
+from course_testing.network.scenarios import FLOOD_RATE, RATE_TOLERANCE
 
 
 def pytest_generate_tests(metafunc):

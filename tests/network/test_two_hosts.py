@@ -9,8 +9,8 @@ CAP_NET_ADMIN); started without, it fails with a sentence saying so.
 """
 import pytest
 
-from netns import RESUME_TIMEOUT, TwoHosts, cut_and_restore, fake_tb3_across, turtlesim_across
-from rosnet import is_loopback, listening_sockets
+from course_testing.network.netns import RESUME_TIMEOUT, TwoHosts, cut_and_restore, fake_tb3_across, turtlesim_across
+from course_testing.network.rosnet import is_loopback, listening_sockets
 
 
 @pytest.fixture

@@ -18,8 +18,9 @@ from rosgraph_msgs.msg import Clock, Log
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import UInt32
 
-from course_common.testing import wait_until
-from rostest_helpers import Recorder, rosout_lines
+from course_testing.recording import TopicRecorder
+from course_testing.waiting import measurement_window, wait_until
+from fake_tb3_testing import rosout_lines
 
 MAX = 1.7976931348623157e308
 EXTREME_COMMANDS = [(1e308, 0.0), (0.0, 1e308), (-1e308, 0.0), (0.0, -1e308), (0.0, 1e6),
@@ -42,20 +43,14 @@ def twist(linear, angular):
     return message
 
 
-def measurement_window(seconds):
-    """Let the simulators run for a fixed wall time while the recorders count: this is a
-    measurement, not a wait for something to happen."""
-    time.sleep(seconds)
-
-
 class ExtremeCommandsTest(unittest.TestCase):
     def test_extreme_commands(self):
         rospy.init_node('extreme_commands_test')
-        recorders = {topic: Recorder(topic, kind) for topic, kind in (
+        recorders = {topic: TopicRecorder(topic, kind) for topic, kind in (
             ('/clock', Clock), ('/odom', Odometry), ('/scan', LaserScan),
             ('/far/clock', Clock), ('/far/odom', Odometry), ('/far/scan', LaserScan),
             ('/collisions', UInt32))}
-        rosout = Recorder('/rosout', Log)
+        rosout = TopicRecorder('/rosout', Log)
         cmd_vel = rospy.Publisher('/cmd_vel', Twist, queue_size=10)
         far_cmd_vel = rospy.Publisher('/far/cmd_vel', Twist, queue_size=1, latch=True)
         wait_until(lambda: all(r.latest() for r in recorders.values()), 30, 'every topic')
@@ -94,7 +89,7 @@ class ExtremeCommandsTest(unittest.TestCase):
             self.assertAlmostEqual(simulated / (end - start), 1.0, delta=RATE_TOLERANCE,
                                    msg='%s ran at %.3fx' % (topic, simulated / (end - start)))
         rospy.loginfo('during the extreme commands: %s', ', '.join(measured))
-        for _, odom in recorders['/odom'].since(start):
+        for _, odom in recorders['/odom'].arrived_since(start):
             position = odom.pose.pose.position
             self.assertTrue(inside_the_wall(position.x, position.y),
                             'the robot left turtlebot3_world: %s' % position)

@@ -12,8 +12,9 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, JointState, LaserScan
 
-from course_common.testing import wait_until
-from rostest_helpers import Recorder, lookup
+from course_testing.recording import TopicRecorder
+from course_testing.waiting import measurement_window, wait_until
+from fake_tb3_testing import lookup
 
 WINDOW = 8.0  # wall seconds over which rates are measured
 
@@ -22,18 +23,17 @@ class RealTimeTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('real_time_test')
-        cls.odom = Recorder('/odom', Odometry)
-        cls.joint_states = Recorder('/joint_states', JointState)
-        cls.scan = Recorder('/scan', LaserScan)
-        cls.imu = Recorder('/imu', Imu)
+        cls.odom = TopicRecorder('/odom', Odometry)
+        cls.joint_states = TopicRecorder('/joint_states', JointState)
+        cls.scan = TopicRecorder('/scan', LaserScan)
+        cls.imu = TopicRecorder('/imu', Imu)
         cls.tf_buffer = tf2_ros.Buffer()
         cls.tf_listener = tf2_ros.TransformListener(cls.tf_buffer)
         wait_until(lambda: cls.scan.latest() and cls.odom.latest(), 30, 'scan and odom')
 
     def test_rates(self):
         start = time.monotonic()
-        wait_until(lambda: time.monotonic() - start > WINDOW, WINDOW + 5, 'the rate window')
-        end = time.monotonic()
+        end = measurement_window(WINDOW, start)
         for recorder, expected in ((self.scan, 5.0), (self.odom, 30.0), (self.joint_states, 30.0),
                                    (self.imu, 30.0)):
             rate = recorder.rate(start, end)
@@ -74,7 +74,7 @@ class RealTimeTest(unittest.TestCase):
         self.assertEqual((transform.translation.x, transform.translation.y), (-2.0, -0.5))
 
     def test_speed_clamp_and_command_timeout(self):
-        limited = Recorder('/limited/odom', Odometry)
+        limited = TopicRecorder('/limited/odom', Odometry)
         publisher = rospy.Publisher('/limited/cmd_vel', Twist, queue_size=1)
         wait_until(publisher.get_num_connections, 20, 'the limited simulator on cmd_vel')
         twist = Twist()

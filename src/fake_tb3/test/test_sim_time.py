@@ -19,8 +19,9 @@ from sensor_msgs.msg import JointState, LaserScan
 from std_msgs.msg import UInt32
 from std_srvs.srv import Trigger
 
-from course_common.testing import wait_until
-from rostest_helpers import Recorder, rosout_lines
+from course_testing.recording import TopicRecorder
+from course_testing.waiting import measurement_window, wait_until
+from fake_tb3_testing import rosout_lines, stamp_rate
 
 REAL_TIME_FACTOR = 10.0
 # The body's front is 0.038 m ahead of base_footprint (burger box 0.14 m centred at -0.032).
@@ -31,12 +32,12 @@ class SimTimeTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('sim_time_test')
-        cls.clock = Recorder('/clock', Clock)
-        cls.odom = Recorder('/odom', Odometry)
-        cls.joint_states = Recorder('/joint_states', JointState)
-        cls.scan = Recorder('/scan', LaserScan)
-        cls.collisions = Recorder('/collisions', UInt32)
-        cls.rosout = Recorder('/rosout', Log)
+        cls.clock = TopicRecorder('/clock', Clock)
+        cls.odom = TopicRecorder('/odom', Odometry)
+        cls.joint_states = TopicRecorder('/joint_states', JointState)
+        cls.scan = TopicRecorder('/scan', LaserScan)
+        cls.collisions = TopicRecorder('/collisions', UInt32)
+        cls.rosout = TopicRecorder('/rosout', Log)
         cls.cmd_vel = rospy.Publisher('/cmd_vel', Twist, queue_size=1)
         wait_until(lambda: cls.scan.latest() and cls.odom.latest() and cls.collisions.latest(), 30,
                    'scan, odom and collisions')
@@ -47,32 +48,42 @@ class SimTimeTest(unittest.TestCase):
         twist.linear.x, twist.angular.z = linear, angular
         self.cmd_vel.publish(twist)
 
-    def test_01_scan_sees_the_wall_exactly(self):
-        # Laser 0.032 m behind base_footprint at the origin, wall face at x = 2.0.
-        scan = self.scan.latest()
+    def stopped_away_from_the_wall(self):
+        """Whatever the tests before left (the robot pushing on the wall, backing off): stopped, the
+        wall 1 m or more ahead."""
+        self.drive(-0.5)
+        wait_until(lambda: self.odom.latest().pose.pose.position.x <= 1.0, 30, 'backing away from the wall')
+        self.drive(0.0)
+        wait_until(lambda: self.odom.latest().twist.twist.linear.x == 0.0, 10, 'the robot stopped')
+
+    def test_scan_sees_the_wall_exactly(self):
+        # Laser 0.032 m behind base_footprint at the origin, wall face at x = 2.0: the first scan,
+        # from the spawn pose, before any test drove.
+        scan = self.scan.messages()[0]
         self.assertAlmostEqual(scan.ranges[0], 2.032, places=5)
         self.assertAlmostEqual(scan.ranges[30], 2.032 / math.cos(30 * scan.angle_increment),
                                places=4)
         self.assertEqual(scan.ranges[180], math.inf)
 
-    def test_02_clock_runs_at_the_real_time_factor(self):
+    def test_clock_runs_at_the_real_time_factor(self):
         start_wall = time.monotonic()
         start_clock = self.clock.latest().clock
-        wait_until(lambda: time.monotonic() - start_wall > 4.0, 10, '4 s of wall time')
+        end_wall = measurement_window(4.0, start_wall)
         simulated = (self.clock.latest().clock - start_clock).to_sec()
-        factor = simulated / (time.monotonic() - start_wall)
+        factor = simulated / (end_wall - start_wall)
         self.assertAlmostEqual(factor, REAL_TIME_FACTOR, delta=0.15 * REAL_TIME_FACTOR)
 
-    def test_03_rates_in_simulated_time(self):
+    def test_rates_in_simulated_time(self):
         start = self.clock.latest().clock + rospy.Duration(1)
         end = start + rospy.Duration(10)
         wait_until(lambda: self.odom.latest().header.stamp > end + rospy.Duration(0.5), 30,
                    '11.5 simulated seconds')
-        self.assertAlmostEqual(self.scan.stamp_rate(start, end), 5.0, delta=0.1)
-        self.assertAlmostEqual(self.odom.stamp_rate(start, end), 30.0, delta=0.3)
-        self.assertAlmostEqual(self.joint_states.stamp_rate(start, end), 30.0, delta=0.3)
+        self.assertAlmostEqual(stamp_rate(self.scan, start, end), 5.0, delta=0.1)
+        self.assertAlmostEqual(stamp_rate(self.odom, start, end), 30.0, delta=0.3)
+        self.assertAlmostEqual(stamp_rate(self.joint_states, start, end), 30.0, delta=0.3)
 
-    def test_04_drives_into_the_wall_and_stops_at_the_contact(self):
+    def test_drives_into_the_wall_and_stops_at_the_contact(self):
+        self.stopped_away_from_the_wall()
         self.drive(1.0)
         wait_until(lambda: self.collisions.latest().data == 1, 30, 'a collision')
         wait_until(lambda: self.odom.latest().twist.twist.linear.x == 0.0, 5, 'the robot stopped')
@@ -90,7 +101,8 @@ class SimTimeTest(unittest.TestCase):
                    'a scan')
         self.assertEqual(self.scan.latest().ranges[0], math.inf)
 
-    def test_05_non_finite_commands_are_refused_and_the_last_one_holds(self):
+    def test_non_finite_commands_are_refused_and_the_last_one_holds(self):
+        self.stopped_away_from_the_wall()
         self.drive(-0.5)
         wait_until(lambda: self.odom.latest().twist.twist.linear.x == -0.5, 10, 'backing off')
         wheels = wait_until(lambda: self.joint_states.latest().velocity[0] < 0
@@ -102,7 +114,8 @@ class SimTimeTest(unittest.TestCase):
         self.assertEqual(self.odom.latest().twist.twist.linear.x, -0.5)
         self.drive(0.0)
 
-    def test_06_save_picture(self):
+    def test_save_picture(self):
+        self.stopped_away_from_the_wall()
         folder = tempfile.mkdtemp()
         path = os.path.join(folder, 'top.png')
         rospy.set_param('/fake_tb3/picture_png', path)
@@ -119,7 +132,7 @@ class SimTimeTest(unittest.TestCase):
         self.assertFalse(reply.success)
         self.assertIn('cannot write', reply.message)
 
-    def test_07_bad_parameters_are_clear_errors(self):
+    def test_bad_parameters_are_clear_errors(self):
         cases = [(['_model:=burgr'], "unknown TurtleBot3 model 'burgr'"),
                  (['_world:=moon'], "no world 'moon'"),
                  (['_real_time_factor:=-2'], 'real_time_factor must be positive'),

@@ -7,8 +7,8 @@ import rospy
 import rostest
 from sensor_msgs.msg import LaserScan
 
-from course_common.testing import wait_until
-from lab_sim import LabTestCase, Launch, node_names
+from course_testing.waiting import wait_until
+from move_turtlebot3_testing import LabTestCase, Launch, node_names
 
 LABELS = ['s1 [0]', 's2 [90]', 's3 [180]', 's4 [270]', 's5 [359]']
 INDICES = [0, 90, 180, 270, 359]

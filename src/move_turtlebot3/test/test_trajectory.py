@@ -5,7 +5,7 @@ import numpy
 import rospy
 import rostest
 
-from lab_sim import LabTestCase, Launch
+from move_turtlebot3_testing import LabTestCase, Launch
 
 
 def fitted_circle(poses):

@@ -9,7 +9,7 @@ import rostest
 from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Trigger
 
-from lab_sim import LabTestCase, Launch, LoneNode, largest_move, node_names, path_length
+from move_turtlebot3_testing import LabTestCase, Launch, LoneNode, largest_move, node_names, travelled
 
 CELL = 0.5  # m: side of the squares counted as visited
 
@@ -33,11 +33,11 @@ class WanderTest(LabTestCase):
         self.watch.wait_sim_seconds(120, timeout=240)
         poses = self.watch.poses_since(start)
         self.assertEqual(self.watch.collisions, 0)
-        travelled = path_length(poses)
+        driven = travelled(poses)
         cells = visited_cells(poses)
         print('wander, noise %.2f: %.1f m travelled, %d cells of %.1f m, %.1f m from the start at '
-              'most' % (noise, travelled, len(cells), CELL, largest_move(poses)))
-        self.assertGreater(travelled, 10.0)       # 120 s at 0.22 m/s would be 26 m
+              'most' % (noise, driven, len(cells), CELL, largest_move(poses)))
+        self.assertGreater(driven, 10.0)       # 120 s at 0.22 m/s would be 26 m
         self.assertGreaterEqual(len(cells), 20)   # the arena holds about 90 such squares
         self.assertGreater(largest_move(poses), 2.0)
         return poses

@@ -6,7 +6,8 @@ import unittest
 
 import rostest
 
-from course_common.testing import PtyProgram, wait_until
+from course_testing.processes import PtyProgram
+from course_testing.waiting import wait_until
 
 
 def shell(*command):

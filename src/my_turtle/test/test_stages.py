@@ -9,8 +9,8 @@ import rostest
 from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty
 
-from course_common.testing import wait_until
-from turtle_watch import POSE_LINE, POSE_RATE_HZ, PoseWatch, PrintingNode, duration, path_length, turned
+from course_testing.waiting import wait_until
+from my_turtle_testing import POSE_LINE, POSE_RATE_HZ, PrintingNode, duration, travelled, turned, turtle1_poses
 
 FORWARD_SPEED_MPS = 0.5
 SPEED_TOLERANCE = 0.02  # relative
@@ -23,7 +23,7 @@ class StagesTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('stages_test')
-        cls.poses = PoseWatch()
+        cls.poses = turtle1_poses()
         cls.teleop = rospy.Publisher('/cmd_vel_mux/input/teleop', Twist, queue_size=1)
 
     def setUp(self):
@@ -82,20 +82,20 @@ class StagesTest(unittest.TestCase):
     def test_stage3_follows_the_teleop(self):
         self.start('my_turtle_node', 'Waiting for teleop commands on cmd_vel_mux/input/teleop')
         still = self.poses.record(1.0)
-        self.assertEqual(path_length(still), 0.0, 'the turtle moved before any teleop command')
+        self.assertEqual(travelled(still), 0.0, 'the turtle moved before any teleop command')
         self.assertTrue(re.match(POSE_LINE, self.node.lines[-1]), 'no pose lines while still')
 
         self.send(0.3, 0.6)
         self.poses.wait_for(lambda pose: pose.angular_velocity > 0.5, 5, 'the turtle to follow')
         samples = self.poses.record(WINDOW_S)
-        self.assertAlmostEqual(path_length(samples) / duration(samples), 0.3, delta=0.3 * SPEED_TOLERANCE)
+        self.assertAlmostEqual(travelled(samples) / duration(samples), 0.3, delta=0.3 * SPEED_TOLERANCE)
         self.assertAlmostEqual(turned(samples) / duration(samples), 0.6, delta=0.6 * SPEED_TOLERANCE)
 
         self.send(0.0, 0.0)
         self.poses.wait_for(lambda pose: pose.linear_velocity == 0 and pose.angular_velocity == 0,
                             5, 'the turtle to stop on a zero command')
         stopped = self.poses.record(1.0)
-        self.assertEqual(path_length(stopped), 0.0, 'the turtle still moves after a zero command')
+        self.assertEqual(travelled(stopped), 0.0, 'the turtle still moves after a zero command')
         self.assertTrue(math.isclose(stopped[0][1].theta, stopped[-1][1].theta))
 
     def send(self, linear, angular):

@@ -10,8 +10,9 @@ import rostest
 from PIL import Image
 from std_srvs.srv import Trigger
 
-from course_common.testing import PtyProgram, wait_until
-from turtle_watch import PoseWatch, hold_key, path_length, turned
+from course_testing.processes import PtyProgram
+from course_testing.waiting import wait_until
+from my_turtle_testing import hold_key, travelled, turned, turtle1_poses
 
 SIDE_M = 1.5
 # From a k press to the turtle standing still takes up to a teleop pass, a relay loop and a
@@ -35,7 +36,7 @@ class TeleopChainTest(unittest.TestCase):
         rospy.init_node('teleop_chain_test')
         self.chain = PtyProgram(['roslaunch', 'my_turtle', 'teleop_chain.launch'])
         self.chain.wait_for_output('currently:\tspeed 0.2\tturn 1', timeout=60)
-        self.poses = PoseWatch()
+        self.poses = turtle1_poses()
 
     def tearDown(self):
         self.chain.stop()
@@ -45,24 +46,24 @@ class TeleopChainTest(unittest.TestCase):
         self.poses.wait_for(lambda pose: pose.linear_velocity == 0 and pose.angular_velocity == 0,
                             5, 'k to stop the turtle')
         still = self.poses.record(0.5)
-        self.assertEqual(path_length(still), 0.0, 'the turtle moves after k')
+        self.assertEqual(travelled(still), 0.0, 'the turtle moves after k')
         self.assertEqual(turned(still), 0.0, 'the turtle turns after k')
 
     def hold_until(self, key, progress, goal, speed):
         """Hold key until progress(poses since) reaches goal, then k; returns the poses since.
         speed(pose) is how fast progress grows, to let go before the turtle coasts past the goal."""
-        first = len(self.poses.samples)
+        first = self.poses.count()
 
         def arriving():
             coasting = speed(self.poses.latest()) * STOP_LATENCY_S
-            return progress(self.poses.samples[first:]) + coasting >= goal
+            return progress(self.poses.entries(first)) + coasting >= goal
         hold_key(self.chain, key, arriving, 30, 'holding %s to reach %.2f' % (key, goal))
         self.stop_with_k()
-        return self.poses.samples[first:]
+        return self.poses.entries(first)
 
     def forward_with_i(self, metres):
         start = self.poses.latest()
-        driven = self.hold_until('i', path_length, metres, lambda pose: pose.linear_velocity)
+        driven = self.hold_until('i', travelled, metres, lambda pose: pose.linear_velocity)
         self.assertAlmostEqual(turned(driven), 0.0, places=4, msg='i turned the turtle')
         end = self.poses.latest()
         heading = math.atan2(end.y - start.y, end.x - start.x)
@@ -72,7 +73,7 @@ class TeleopChainTest(unittest.TestCase):
 
     def left_with_j(self, radians):
         turning = self.hold_until('j', turned, radians, lambda pose: pose.angular_velocity)
-        self.assertEqual(path_length(turning), 0.0, 'j moved the turtle')
+        self.assertEqual(travelled(turning), 0.0, 'j moved the turtle')
 
     def test_keys_drive_the_turtle_around_a_square(self):
         for _ in range(6):  # w: linear speed x1.1 each time

@@ -10,8 +10,8 @@ import rospy
 import rostest
 from geometry_msgs.msg import Twist
 
-from course_common.testing import wait_until
-from exercise_testing import Command, PoseRecorder
+from course_testing.waiting import wait_until
+from ros_exercises_testing import Command, pose_array, turtle_poses
 import figures
 
 TURTLE1_START = (5.544445, 5.544445)
@@ -20,7 +20,7 @@ NUMBER = r'(-?\d+\.\d+)'
 
 def assert_printed_poses_were_published(test, printed, recorder):
     """Every printed (x, y, theta) is one of the poses the simulator published."""
-    published = recorder.array()[:, :3]
+    published = pose_array(recorder)[:, :3]
     for line in printed:
         error = numpy.abs(published - [float(value) for value in line]).max(axis=1).min()
         test.assertLess(error, 2e-6, 'printed %s, never published' % (line,))
@@ -29,7 +29,7 @@ def assert_printed_poses_were_published(test, printed, recorder):
 def assert_circle(test, recorder, centre, radius):
     """One full turn of moving poses lies on a circle of `radius` around `centre`, within 2 %."""
     def moving_points():
-        poses = recorder.array()
+        poses = pose_array(recorder)
         return poses[poses[:, 3] > 0, :2] if len(poses) else poses
 
     turn_poses = int(2 * math.pi / radius / 0.016) + 10  # turtlesim moves 0.016 s per pose
@@ -49,7 +49,7 @@ class TestListenerCircle(unittest.TestCase):
         rospy.init_node('test_listener_circle')
 
     def test_exercise2_listener_prints_the_pose(self):
-        self.recorder = PoseRecorder('turtle1')
+        self.recorder = turtle_poses('turtle1')
         listener = Command('roslaunch', 'ros_exercises', 'exercise2.launch')
         try:
             line = r'x: %s, y: %s, theta: %s' % (NUMBER, NUMBER, NUMBER)
@@ -75,7 +75,7 @@ class TestListenerCircle(unittest.TestCase):
 
     def drive_circle(self, turtle, centre, *launch_arguments):
         """Runs exercise3.launch and checks the circle of radius 1 m and the printed poses."""
-        self.recorder = PoseRecorder(turtle)
+        self.recorder = turtle_poses(turtle)
         circle = Command('roslaunch', 'ros_exercises', 'exercise3.launch', *launch_arguments)
         try:
             assert_circle(self, self.recorder, centre, 1.0)

@@ -1,35 +1,22 @@
 #!/usr/bin/env python3
 """Exercises 0 and 1: the digits of the ID arrive in order at 50 Hz and at 1 Hz, the subscriber
 prints each of them, and bad parameters stop the publisher with a clear message."""
-import time
 import unittest
 
 import rospy
 import rostest
 from std_msgs.msg import Int32
 
-from course_common.testing import wait_until
+from course_testing.recording import TopicRecorder
 
-from exercise_testing import Command, run
+from ros_exercises_testing import Command, run
 
 FAST_ID = '4095127'
 SLOW_ID = '907'
 
 
-class DigitRecorder:
-    def __init__(self, topic):
-        self.received = []  # (arrival time, digit)
-        self._subscriber = rospy.Subscriber(topic, Int32, self._record, queue_size=1000)
-
-    def _record(self, msg):
-        self.received.append((time.monotonic(), msg.data))
-
-    def wait_for(self, count, timeout):
-        wait_until(lambda: len(self.received) >= count, timeout, '%d digits on %s' % (count, self._subscriber.name))
-
-
-def rate_of(arrivals):
-    times = [arrival for arrival, _ in arrivals]
+def rate_of(entries):
+    times = [arrival for arrival, _ in entries]
     return (len(times) - 1) / (times[-1] - times[0])
 
 
@@ -45,8 +32,8 @@ class TestPublisherSubscriber(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('test_publisher_subscriber')
-        cls.fast = DigitRecorder('/ZabirovaKostyukova')
-        cls.slow = DigitRecorder('/slow')
+        cls.fast = TopicRecorder('/ZabirovaKostyukova', Int32)
+        cls.slow = TopicRecorder('/slow', Int32)
         cls.exercise1 = Command('roslaunch', 'ros_exercises', 'exercise1.launch', 'rate:=50', 'id:=' + FAST_ID)
         cls.slow_publisher = Command('rosrun', 'ros_exercises', 'publisher', '_rate:=1', '_id:=' + SLOW_ID,
                                      'ZabirovaKostyukova:=slow', '__name:=slow_publisher')
@@ -58,20 +45,20 @@ class TestPublisherSubscriber(unittest.TestCase):
 
     def test_50_hz_within_2_percent(self):
         # The first digits after connecting are left out: they may arrive bunched.
-        self.fast.wait_for(161, 30)
-        rate = rate_of(self.fast.received[10:161])
+        self.fast.wait_for_count(161, 30)
+        rate = rate_of(self.fast.entries()[10:161])
         self.assertAlmostEqual(rate, 50.0, delta=1.0, msg='measured %.2f Hz' % rate)
 
     def test_1_hz_within_2_percent(self):
-        self.slow.wait_for(7, 30)
-        rate = rate_of(self.slow.received[1:7])
+        self.slow.wait_for_count(7, 30)
+        rate = rate_of(self.slow.entries()[1:7])
         self.assertAlmostEqual(rate, 1.0, delta=0.02, msg='measured %.4f Hz' % rate)
 
     def test_digits_in_order(self):
-        self.fast.wait_for(3 * len(FAST_ID), 30)
-        self.slow.wait_for(4, 30)
-        assert_cycles_through(self, [digit for _, digit in self.fast.received], FAST_ID)
-        assert_cycles_through(self, [digit for _, digit in self.slow.received], SLOW_ID)
+        self.fast.wait_for_count(3 * len(FAST_ID), 30)
+        self.slow.wait_for_count(4, 30)
+        assert_cycles_through(self, [digit.data for digit in self.fast.messages()], FAST_ID)
+        assert_cycles_through(self, [digit.data for digit in self.slow.messages()], SLOW_ID)
 
     def test_subscriber_prints_each_digit(self):
         self.exercise1.wait_for(r'Publishing the digits of %s at 50 Hz' % FAST_ID)

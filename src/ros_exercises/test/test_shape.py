@@ -15,7 +15,7 @@ import rospy
 import rostest
 from turtlesim.srv import Kill
 
-from exercise_testing import Command, PoseRecorder, save_canvas
+from ros_exercises_testing import Command, pose_array, save_canvas, turtle_poses
 import figures
 
 TOLERANCE = 0.05  # metres
@@ -29,12 +29,12 @@ class TestShape(unittest.TestCase):
         cls.shape = rospy.get_param('~shape')
         cls.side = rospy.get_param('~side')
         cls.outline = figures.polygon(*START, cls.side, {'square': 4, 'triangle': 3}[cls.shape])
-        cls.recorder = PoseRecorder('robotics')
+        cls.recorder = turtle_poses('robotics')
         cls.exercise5 = Command('roslaunch', 'ros_exercises', 'exercise5.launch', 'shape:=' + cls.shape,
                                 'side:=%s' % cls.side, 'speed:=%s' % rospy.get_param('~speed'),
                                 'turn_speed:=%s' % rospy.get_param('~turn_speed'))
         cls.exercise5.wait_for(r'Finished the %s' % cls.shape, timeout=120)
-        cls.poses = cls.recorder.array()
+        cls.poses = pose_array(cls.recorder)
         # The canvas shows the turtles over the lines; without the turtle, all its path is visible.
         rospy.ServiceProxy('/kill', Kill)('robotics')
         cls.canvas_folder = tempfile.mkdtemp()

@@ -9,8 +9,8 @@ import rospy
 import rostest
 from turtlesim.srv import Kill
 
-from course_common.testing import wait_until
-from exercise_testing import Command, PoseRecorder, run
+from course_testing.waiting import wait_until
+from ros_exercises_testing import Command, run, turtle_poses
 
 
 def spawn_turtle(node_name, *arguments):
@@ -35,10 +35,11 @@ class TestSpawnServices(unittest.TestCase):
         cls.exercise4.stop()
 
     def assert_pose(self, turtle, x, y, theta):
-        recorder = PoseRecorder(turtle)
+        recorder = turtle_poses(turtle)
         try:
-            recorder.wait_for(1, 10)
-            for measured, expected in zip(recorder.poses[-1][:3], (x, y, theta)):
+            recorder.wait_for_count(1, 10)
+            pose = recorder.latest()
+            for measured, expected in zip((pose.x, pose.y, pose.theta), (x, y, theta)):
                 self.assertAlmostEqual(measured, expected, delta=1e-5)
         finally:
             recorder.close()

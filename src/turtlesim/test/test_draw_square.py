@@ -7,9 +7,10 @@ import unittest
 import rospy
 import rostest
 
-from course_common.testing import wait_until
+from course_testing.recording import TopicRecorder
+from course_testing.waiting import wait_until
 from turtlesim.msg import Pose
-from turtlesim_testing import Recorder, RosoutWatcher
+from turtlesim_testing import RosoutWatcher
 
 CENTRE = 5.544445
 CORNERS = [(CENTRE + 2, CENTRE), (CENTRE + 2, CENTRE + 2), (CENTRE, CENTRE + 2), (CENTRE, CENTRE)]
@@ -42,13 +43,13 @@ class DrawSquareTest(unittest.TestCase):
     def test_turtle1_drives_around_a_square(self):
         rospy.init_node('draw_square_test')
         rosout = RosoutWatcher()
-        poses = Recorder('/turtle1/pose', Pose)
-        wait_until(lambda: len(corners(poses.since(0))) >= 4, 90.0, 'turtle1 to go once around the square')
-        found = corners(poses.since(0))
+        poses = TopicRecorder('/turtle1/pose', Pose)
+        wait_until(lambda: len(corners(poses.messages(0))) >= 4, 90.0, 'turtle1 to go once around the square')
+        found = corners(poses.messages(0))
         for pose, (x, y) in zip(found, CORNERS):
             self.assertAlmostEqual(pose.x, x, delta=CORNER_TOLERANCE, msg=found)
             self.assertAlmostEqual(pose.y, y, delta=CORNER_TOLERANCE, msg=found)
-        turned = [pose.theta for pose in stops(poses.since(0)) if pose not in found]
+        turned = [pose.theta for pose in stops(poses.messages(0)) if pose not in found]
         self.assertGreaterEqual(len(turned), 3, found)  # a stop after each of the first three turns
         for theta in turned:
             quarter_turns = theta / (math.pi / 2)

@@ -14,10 +14,11 @@ from PIL import Image as PilImage
 from sensor_msgs.msg import Image
 from std_srvs.srv import Empty, Trigger
 
-from course_common.testing import wait_until
+from course_testing.recording import TopicRecorder
+from course_testing.waiting import wait_until
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
-from turtlesim_testing import (Recorder, RosoutWatcher, connected_publisher, graph, moved, published_topics,
+from turtlesim_testing import (RosoutWatcher, connected_publisher, graph, moved, published_topics,
                                twist)
 
 WORLD_SIZE = 499 / 45  # metres; float32 poses may exceed it by 1e-6
@@ -42,7 +43,7 @@ class TurtlesimInterfaceTest(unittest.TestCase):
 
     def setUp(self):
         self.reset()
-        self.pose = Recorder('/turtle1/pose', Pose)
+        self.pose = TopicRecorder('/turtle1/pose', Pose)
         self.pose.next_message(10.0)
 
     def tearDown(self):
@@ -102,7 +103,7 @@ class TurtlesimInterfaceTest(unittest.TestCase):
     def test_pose_rate_is_62_5_hz(self):
         start = self.pose.count()
         wait_until(lambda: self.pose.count() >= start + 190, 10.0, '190 poses')
-        times = [arrival for arrival, _ in self.pose.messages[start:]]
+        times = [arrival for arrival, _ in self.pose.entries(start)]
         rate = (len(times) - 1) / (times[-1] - times[0])
         self.assertAlmostEqual(rate, 62.5, delta=62.5 * 0.02)
 
@@ -174,7 +175,7 @@ class TurtlesimInterfaceTest(unittest.TestCase):
             'WARN', 'Ignoring a velocity command for [turtle1]: linear.x=nan must be a finite number', start)
         cmd_vel.publish(twist(1e308, 1e300, -1e308))
         wait_until(lambda: self.pose.next_message().linear_velocity > 1e38, 5.0, 'the huge command')
-        for pose in self.pose.since(self.pose.count() - 20):
+        for pose in self.pose.messages(self.pose.count() - 20):
             values = (pose.x, pose.y, pose.theta, pose.linear_velocity, pose.angular_velocity)
             self.assertTrue(all(math.isfinite(value) for value in values), pose)
             self.assertTrue(0.0 <= pose.x <= WORLD_SIZE + 1e-6 and 0.0 <= pose.y <= WORLD_SIZE + 1e-6, pose)
@@ -182,7 +183,7 @@ class TurtlesimInterfaceTest(unittest.TestCase):
 
     # --- pen, colour sensor, background ---
     def test_pen_and_colour_sensor(self):
-        colour = Recorder('/turtle1/color_sensor', Color)
+        colour = TopicRecorder('/turtle1/color_sensor', Color)
         self.assertEqual(tuple(colour.next_message().__getstate__()), BACKGROUND)
         service('/turtle1/set_pen', SetPen)(255, 0, 0, 4, 0)
         cmd_vel = connected_publisher('/turtle1/cmd_vel', Twist)
@@ -191,7 +192,7 @@ class TurtlesimInterfaceTest(unittest.TestCase):
         colour.close()
 
     def test_background_params_are_read_only_when_clearing(self):
-        colour = Recorder('/turtle1/color_sensor', Color)
+        colour = TopicRecorder('/turtle1/color_sensor', Color)
         try:
             for channel, value in zip('rgb', (10, 200, 30)):
                 rospy.set_param('/turtlesim/background_' + channel, value)
@@ -237,13 +238,13 @@ class TurtlesimInterfaceTest(unittest.TestCase):
             rospy.delete_param('/turtlesim/canvas_png')
 
     def test_canvas_topic_is_an_rgb8_picture_at_1_hz(self):
-        canvas = Recorder('/turtlesim/canvas', Image)
+        canvas = TopicRecorder('/turtlesim/canvas', Image)
         wait_until(lambda: canvas.count() >= 3, 10.0, 'three canvas images')
         image = canvas.latest()
         self.assertEqual((image.width, image.height, image.encoding, image.step), (500, 500, 'rgb8', 1500))
         self.assertEqual(tuple(image.data[:3]), BACKGROUND)
         self.assertEqual(len(image.data), 500 * 500 * 3)
-        second, third = canvas.messages[1][0], canvas.messages[2][0]
+        second, third = canvas.entries()[1][0], canvas.entries()[2][0]
         self.assertAlmostEqual(third - second, 1.0, delta=0.25)
         canvas.close()
 

@@ -11,11 +11,12 @@ import rospy
 import rostest
 from PIL import Image as PilImage
 
-from course_common.screen import VirtualScreen
-from course_common.testing import wait_until
+from course_testing.recording import TopicRecorder
+from course_testing.screen import VirtualScreen
+from course_testing.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import SetPen, TeleportAbsolute
-from turtlesim_testing import Recorder, graph, published_topics
+from turtlesim_testing import graph, published_topics
 
 BACKGROUND = (69, 86, 255)
 PEN = (179, 184, 255)
@@ -88,7 +89,7 @@ class LifecycleTest(unittest.TestCase):
             path = os.path.join(folder, 'square.png')
             demo = self.start(['roslaunch', 'turtlesim', 'draw_square_demo.launch', 'canvas_png:=' + path])
             wait_until(lambda: '/turtle1/pose' in published_topics(), 30.0, '/turtle1/pose')
-            poses = Recorder('/turtle1/pose', Pose)
+            poses = TopicRecorder('/turtle1/pose', Pose)
             wait_until(lambda: (poses.latest() or Pose()).x > 6.8, 20.0, 'turtle1 to drive 1.3 m to the right')
             poses.close()
             code, out, err = interrupt(demo)
@@ -122,7 +123,7 @@ class LifecycleTest(unittest.TestCase):
             quiet = self.start(['rosrun', 'turtlesim', 'turtlesim_node', '__ns:=no_gui', '_gui:=false'],
                           DISPLAY=screen.display)
             # half a second of poses: the time a window would need to appear (it takes ~50 ms)
-            poses = Recorder('/no_gui/turtle1/pose', Pose)
+            poses = TopicRecorder('/no_gui/turtle1/pose', Pose)
             wait_until(lambda: poses.count() > 30, 20.0, 'poses from /no_gui/turtlesim')
             poses.close()
             self.assertIsNone(screen.window_id('TurtleSim'))
@@ -137,8 +138,8 @@ class LifecycleTest(unittest.TestCase):
         self.assertEqual(services['/turtlesim1/spawn'], ['/turtlesim1/sim'])
         self.assertEqual(services['/turtlesim2/reset'], ['/turtlesim2/sim'])
         rospy.ServiceProxy('/turtlesim1/turtle1/teleport_absolute', TeleportAbsolute)(1.0, 1.0, 0.0)
-        first = Recorder('/turtlesim1/turtle1/pose', Pose).next_message()
-        second = Recorder('/turtlesim2/turtle1/pose', Pose).next_message()
+        first = TopicRecorder('/turtlesim1/turtle1/pose', Pose).next_message()
+        second = TopicRecorder('/turtlesim2/turtle1/pose', Pose).next_message()
         self.assertAlmostEqual(first.x, 1.0, places=5)
         self.assertAlmostEqual(second.x, 5.544445, places=5)
         interrupt(multisim)

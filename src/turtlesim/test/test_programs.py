@@ -7,10 +7,12 @@ import unittest
 import rospy
 import rostest
 
-from course_common.testing import PtyProgram, wait_until
+from course_testing.processes import PtyProgram
+from course_testing.recording import TopicRecorder
+from course_testing.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn, TeleportAbsolute
-from turtlesim_testing import Recorder, moved, publishes_to, wait_until_still
+from turtlesim_testing import moved, publishes_to, wait_until_still
 
 UP, DOWN, RIGHT, LEFT = '\x1b[A', '\x1b[B', '\x1b[C', '\x1b[D'
 ONE_KEY_TICKS = 63  # a single command lasts 1 s: 63 ticks of 16 ms
@@ -23,8 +25,8 @@ class TeleopAndMimicTest(unittest.TestCase):
         rospy.init_node('turtlesim_programs_test')
         rospy.wait_for_service('/spawn', 10.0)
         rospy.ServiceProxy('/spawn', Spawn)(2.0, 2.0, 0.0, 'turtle2')
-        cls.turtle1 = Recorder('/turtle1/pose', Pose)
-        cls.turtle2 = Recorder('/turtle2/pose', Pose)
+        cls.turtle1 = TopicRecorder('/turtle1/pose', Pose)
+        cls.turtle2 = TopicRecorder('/turtle2/pose', Pose)
 
     def start_teleop(self):
         teleop = PtyProgram(['rosrun', 'turtlesim', 'turtle_teleop_key'])

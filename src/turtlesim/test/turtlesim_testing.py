@@ -1,6 +1,4 @@
 """What the turtlesim rostests share: watching topics, rosout lines and the master's view of the graph."""
-import threading
-import time
 import xmlrpc.client
 
 import rosgraph
@@ -8,53 +6,20 @@ import rospy
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Log
 
-from course_common.testing import wait_until
+from course_testing.recording import TopicRecorder
+from course_testing.waiting import wait_until
 
 LEVEL_NAMES = {Log.DEBUG: 'DEBUG', Log.INFO: 'INFO', Log.WARN: 'WARN', Log.ERROR: 'ERROR', Log.FATAL: 'FATAL'}
 
 
-class Recorder:
-    """Every message of a topic, with the time it arrived."""
-
-    def __init__(self, topic, msg_type):
-        self.messages = []  # (arrival time.monotonic(), message)
-        self._lock = threading.Lock()
-        self.subscriber = rospy.Subscriber(topic, msg_type, self._store, queue_size=100)
-
-    def _store(self, message):
-        with self._lock:
-            self.messages.append((time.monotonic(), message))
-
-    def count(self):
-        with self._lock:
-            return len(self.messages)
-
-    def latest(self):
-        with self._lock:
-            return self.messages[-1][1] if self.messages else None
-
-    def since(self, index):
-        with self._lock:
-            return [message for _, message in self.messages[index:]]
-
-    def next_message(self, timeout=5.0):
-        """The first message that arrives after this call."""
-        start = self.count()
-        wait_until(lambda: self.count() > start, timeout, 'a message on %s' % self.subscriber.name)
-        return self.since(start)[0]
-
-    def close(self):
-        self.subscriber.unregister()
-
-
-class RosoutWatcher(Recorder):
+class RosoutWatcher(TopicRecorder):
     """rosout lines, to check the exact texts a node logs."""
 
     def __init__(self):
         super().__init__('/rosout', Log)
 
     def lines(self, node='/turtlesim', start=0):
-        return [(LEVEL_NAMES[log.level], log.msg) for log in self.since(start) if log.name == node]
+        return [(LEVEL_NAMES[log.level], log.msg) for log in self.messages(start) if log.name == node]
 
     def wait_for_line(self, level, text, start=0, node='/turtlesim', timeout=5.0, whole=True):
         """Wait for a line of that level that is `text` (or, with whole=False, contains it)."""

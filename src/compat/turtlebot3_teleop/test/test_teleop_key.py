@@ -11,7 +11,8 @@ import rospy
 import rostest
 from geometry_msgs.msg import Twist
 
-from course_common.testing import PtyProgram, wait_until
+from course_testing.processes import PtyProgram
+from course_testing.waiting import measurement_window, wait_until
 
 NODE = '/turtlebot3_teleop_keyboard'
 
@@ -62,8 +63,8 @@ class TeleopKeyTest(unittest.TestCase):
 
         # about every 0.1 s, counted over a window while nothing is typed
         start_count, start = len(self.messages()), time.monotonic()
-        wait_until(lambda: time.monotonic() - start >= 2.0, timeout=5, what='a 2 s window')
-        rate = (len(self.messages()) - start_count) / (time.monotonic() - start)
+        end = measurement_window(2.0, start)
+        rate = (len(self.messages()) - start_count) / (end - start)
         self.assertGreater(rate, 7.0)
         self.assertLess(rate, 13.0)
 

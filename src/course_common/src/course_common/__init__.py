@@ -1,1 +1,2 @@
-"""Helpers shared by the course's packages. Only teleop_ros imports rospy; simulator cores use the rest."""
+"""What the course's nodes share at run time: the keyboard teleops' terminal (keyboard) and ROS side
+(teleop_ros, the only module that imports rospy)."""

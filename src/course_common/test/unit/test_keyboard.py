@@ -7,7 +7,7 @@ import sys
 import pytest
 
 from course_common.keyboard import KeyReader, NoTerminalError
-from course_common.testing import PtyProgram
+from course_testing.processes import PtyProgram
 
 
 def test_without_a_terminal_the_reader_refuses_with_one_sentence():

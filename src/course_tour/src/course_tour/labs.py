@@ -13,20 +13,21 @@ from std_msgs.msg import UInt32
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill
 
-from course_common.screen import VirtualScreen, can_make_screens, red_pixels
-from course_common.testing import PtyProgram, wait_until
-from course_tour.session import Recorder, path_length
+from course_testing.processes import PtyProgram
+from course_testing.recording import TopicRecorder, path_length
+from course_testing.screen import VirtualScreen, can_make_screens, red_pixels
+from course_testing.waiting import wait_until
 
 LabReport = collections.namedtuple('LabReport', 'lines pictures')
 Lab = collections.namedtuple('Lab', 'name title run')
 
 
 def _turtle_poses(name):
-    return Recorder('/%s/pose' % name, Pose)
+    return TopicRecorder('/%s/pose' % name, Pose)
 
 
 def _points(recorder):
-    return [(pose.x, pose.y) for pose in recorder.snapshot()]
+    return [(pose.x, pose.y) for pose in recorder.messages()]
 
 
 def _save_canvas(session, simulator_node, file_name):
@@ -60,7 +61,7 @@ def my_turtle_pose(session):
     launched = session.launch('my_turtle', 'move_pose.launch')
     wait_until(lambda: path_length(_points(poses)) > 2.0, 30, 'turtle1 to drive 2 m')
     points = _points(poses)
-    first, last = poses.snapshot()[0], poses.snapshot()[-1]
+    first, last = poses.messages()[0], poses.messages()[-1]
     poses.close()
     canvas = _save_canvas(session, 'turtlesim_node', 'my_turtle-forward.png')
     session.stop(launched)
@@ -83,12 +84,12 @@ def my_turtle_teleop(session):
     chain = PtyProgram(['roslaunch', '--wait', 'my_turtle', 'teleop_chain.launch'], env=session.env)
     try:
         chain.wait_for_output('currently:', 60)
-        wait_until(lambda: poses.snapshot(), 30, 'the pose of turtle1')
+        wait_until(lambda: poses.messages(), 30, 'the pose of turtle1')
         for key, repeats in TELEOP_SCRIPT:
             for _ in range(repeats):
                 chain.type(key)
                 time.sleep(0.2)  # typing speed of the script, not a wait for a result
-        wait_until(lambda: poses.snapshot()[-1].linear_velocity == 0.0, 10,
+        wait_until(lambda: poses.messages()[-1].linear_velocity == 0.0, 10,
                    'turtle1 to stop after k')
         canvas = _save_canvas(session, 'turtlesim_node', 'my_turtle-teleop.png')
         speeds = re.findall(r'currently:\s+speed ([\d.]+)\s+turn ([\d.]+)', chain.read_available())
@@ -124,11 +125,11 @@ def report_shapes(session):
 
 
 def _odom_points(recorder):
-    return [(odom.pose.pose.position.x, odom.pose.pose.position.y) for odom in recorder.snapshot()]
+    return [(odom.pose.pose.position.x, odom.pose.pose.position.y) for odom in recorder.messages()]
 
 
 def _collisions(recorder):
-    counts = recorder.snapshot()
+    counts = recorder.messages()
     return counts[-1].data if counts else 0
 
 
@@ -150,18 +151,18 @@ def turtlebot3_laser(session):
 
 def turtlebot3_avoid(session):
     """001: avoid_obstacle.py drives at the wall and stops; wander.py roams 120 simulated seconds."""
-    scans, odoms = Recorder('/scan', LaserScan), Recorder('/odom', Odometry)
-    collisions = Recorder('/collisions', UInt32)
+    scans, odoms = TopicRecorder('/scan', LaserScan), TopicRecorder('/odom', Odometry)
+    collisions = TopicRecorder('/collisions', UInt32)
     launched = session.launch('move_turtlebot3', 'avoid_obstacle.launch')
 
     def stopped_at_the_wall():
-        last_scans, last_odoms = scans.snapshot()[-2:], odoms.snapshot()[-1:]
+        last_scans, last_odoms = scans.messages()[-2:], odoms.messages()[-1:]
         return (len(last_scans) == 2 and last_odoms and path_length(_odom_points(odoms)) > 1.0
                 and all(scan.ranges[0] <= 0.5 for scan in last_scans)
                 and last_odoms[0].twist.twist.linear.x == 0.0)
 
     wait_until(stopped_at_the_wall, 60, 'avoid_obstacle to stop in front of the wall')
-    front = scans.snapshot()[-1].ranges[0]
+    front = scans.messages()[-1].ranges[0]
     driven = path_length(_odom_points(odoms))
     hits = _collisions(collisions)
     session.stop(launched)
@@ -169,11 +170,11 @@ def turtlebot3_avoid(session):
              % (driven, front, hits)]
 
     odoms.clear()
-    clock = Recorder('/clock', Clock)
+    clock = TopicRecorder('/clock', Clock)
     picture = session.picture('move_turtlebot3-wander.png')
     launched = session.launch('move_turtlebot3', 'wander.launch', real_time_factor=10,
                               picture_png=picture)
-    wait_until(lambda: clock.snapshot() and clock.snapshot()[-1].clock.to_sec() >= 120.0, 60,
+    wait_until(lambda: clock.messages() and clock.messages()[-1].clock.to_sec() >= 120.0, 60,
                'wander to run 120 simulated seconds')
     session.call_trigger('/fake_tb3/save_picture')
     lines.append('wander.py drove %.1f m in 120 simulated seconds in turtlebot3_world; collisions: %d'

@@ -4,16 +4,14 @@ The tour is one ROS node (`course_tour`) on its own master, on a free port, so t
 master the user already runs. Each lab starts its launch files here and stops them with SIGINT, as
 Ctrl-C in a terminal would, so the simulators save their pictures at shutdown.
 """
-import math
 import os
 import subprocess
-import threading
 
 import rosgraph
 import rospy
 
-from course_common.processes import free_port, stop_process_group
-from course_common.testing import wait_until
+from course_testing.processes import free_port, stop_process_group
+from course_testing.waiting import wait_until
 
 
 ROSCORE_PARAMS = {'/run_id', '/rosdistro', '/rosversion'}
@@ -36,35 +34,6 @@ class Launched:
     def stop(self, timeout=20.0):
         stop_process_group(self.process, timeout)
         self._log.close()
-
-
-class Recorder:
-    """Keeps every message of a topic for a lab to measure afterwards."""
-
-    def __init__(self, topic, message_type):
-        self.messages = []
-        self._lock = threading.Lock()
-        self._subscriber = rospy.Subscriber(topic, message_type, self._keep, queue_size=1000)
-
-    def _keep(self, message):
-        with self._lock:
-            self.messages.append(message)
-
-    def snapshot(self):
-        with self._lock:
-            return list(self.messages)
-
-    def clear(self):
-        with self._lock:
-            self.messages.clear()
-
-    def close(self):
-        self._subscriber.unregister()
-
-
-def path_length(points):
-    """Length of the polyline through (x, y) points."""
-    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
 
 
 class Session:

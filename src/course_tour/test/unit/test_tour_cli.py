@@ -2,7 +2,6 @@ import pytest
 
 from course_tour.labs import LABS
 from course_tour.main import parse_args
-from course_tour.session import path_length
 
 
 def test_no_lab_named_means_every_lab():
@@ -26,7 +25,3 @@ def test_lab_names_are_unique_and_short():
     names = [lab.name for lab in LABS]
     assert len(names) == len(set(names))
     assert all(len(name) <= 8 and name.isidentifier() for name in names)
-
-
-def test_path_length_of_a_square_walk():
-    assert path_length([(0, 0), (2, 0), (2, 2), (0, 2), (0, 0)]) == pytest.approx(8.0)

@@ -6,8 +6,8 @@ each leaves the graph as it found it (turtlesim running, no course node).
 """
 import rosgraph
 
-from rosnet import now, start_master, start_probe
-from scenarios import POSE_FIELDS, TURTLESIM, TURTLESIM_POSE_HZ, publish
+from course_testing.network.rosnet import now, start_master, start_probe
+from course_testing.network.scenarios import POSE_FIELDS, TURTLESIM, TURTLESIM_POSE_HZ, publish
 
 RECOVERY_TIMEOUT = 20.0
 # turtlesim zeroes the velocities 1.0 s after the last command; poses say so one tick later.

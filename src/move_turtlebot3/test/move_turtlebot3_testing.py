@@ -1,5 +1,6 @@
 """Test helpers: run this package's launch files (as a student would, with roslaunch) against the
 test's master, and watch the simulated robot through fake_tb3's topics."""
+import bisect
 import math
 import os
 import subprocess
@@ -14,8 +15,9 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import UInt32
 
-from course_common.processes import stop_process_group
-from course_common.testing import wait_until
+from course_testing.processes import stop_process_group
+from course_testing.recording import TopicRecorder, path_length
+from course_testing.waiting import wait_until
 
 
 def node_names():
@@ -66,67 +68,65 @@ class Launch:
 
 
 class RobotWatch:
-    """Everything the tests look at: odometry (world pose, sim time), scans, collisions, commands."""
+    """Everything the tests look at, recorded from fake_tb3's topics: odometry (world pose, sim
+    time), scans, collisions, the commands and the clock."""
 
     def __init__(self, cmd_vel='/cmd_vel'):
-        self._lock = threading.Lock()
-        self.reset()
-        self._subscribers = [
-            rospy.Subscriber('/odom', Odometry, self._on_odom),
-            rospy.Subscriber('/scan', LaserScan, self._on_scan),
-            rospy.Subscriber('/collisions', UInt32, self._on_collisions),
-            rospy.Subscriber(cmd_vel, Twist, self._on_cmd_vel),
-            rospy.Subscriber('/clock', Clock, self._on_clock),
-        ]
+        self._odom = TopicRecorder('/odom', Odometry)
+        self._scans = TopicRecorder('/scan', LaserScan)
+        self._collisions = TopicRecorder('/collisions', UInt32)
+        self._commands = TopicRecorder(cmd_vel, Twist)
+        self._clock = TopicRecorder('/clock', Clock)
+        self._recorders = [self._odom, self._scans, self._collisions, self._commands, self._clock]
+        self._poses_so_far = []  # the odometry converted so far: tests poll the poses often
 
     def reset(self):
         """Forget everything: call between two runs of the simulator."""
-        with self._lock:
-            self.poses = []        # (sim time s, x, y, yaw)
-            self.scans = []
-            self.commands = []     # (sim time s or None, linear, angular)
-            self.collisions = None
-            self.sim_time = None
+        for recorder in self._recorders:
+            recorder.clear()
+        self._poses_so_far = []
 
     def close(self):
-        for subscriber in self._subscribers:
-            subscriber.unregister()
+        for recorder in self._recorders:
+            recorder.close()
 
-    def _on_odom(self, message):
-        orientation = message.pose.pose.orientation
-        yaw = 2 * math.atan2(orientation.z, orientation.w)
-        with self._lock:
-            self.poses.append((message.header.stamp.to_sec(), message.pose.pose.position.x,
-                               message.pose.pose.position.y, yaw))
+    @property
+    def collisions(self):
+        """The simulator's latest collision count, None before it told one."""
+        latest = self._collisions.latest()
+        return None if latest is None else latest.data
 
-    def _on_scan(self, message):
-        with self._lock:
-            self.scans.append(message)
+    def _poses(self):
+        """(sim time s, x, y, yaw) of every odometry message."""
+        for odom in self._odom.messages(len(self._poses_so_far)):
+            orientation = odom.pose.pose.orientation
+            self._poses_so_far.append((odom.header.stamp.to_sec(), odom.pose.pose.position.x,
+                                       odom.pose.pose.position.y, 2 * math.atan2(orientation.z, orientation.w)))
+        return list(self._poses_so_far)
 
-    def _on_collisions(self, message):
-        with self._lock:
-            self.collisions = message.data
-
-    def _on_cmd_vel(self, message):
-        with self._lock:
-            self.commands.append((self.sim_time, message.linear.x, message.angular.z))
-
-    def _on_clock(self, message):
-        with self._lock:
-            self.sim_time = message.clock.to_sec()
+    def _timed_commands(self):
+        """(sim time s of the latest clock when it arrived, or None; linear, angular) of every command."""
+        clock = self._clock.entries()
+        clock_arrivals = [arrival for arrival, _ in clock]
+        commands = []
+        for arrival, command in self._commands.entries():
+            ticks = bisect.bisect_right(clock_arrivals, arrival)
+            sim_time = clock[ticks - 1][1].clock.to_sec() if ticks else None
+            commands.append((sim_time, command.linear.x, command.angular.z))
+        return commands
 
     def copy(self, name):
-        with self._lock:
-            return list(getattr(self, name))
+        """What was recorded so far: 'poses', 'scans' or 'commands'."""
+        return {'poses': self._poses, 'scans': self._scans.messages, 'commands': self._timed_commands}[name]()
 
     def wait_until_running(self, timeout=60):
         """Until the simulator publishes odometry and scans and tells its collision count."""
-        wait_until(lambda: self.copy('poses') and self.copy('scans') and self.collisions is not None,
+        wait_until(lambda: self._odom.count() and self._scans.count() and self.collisions is not None,
                    timeout, what='odom, scan and collisions from fake_tb3')
 
     def now(self):
         """Simulated time of the latest odometry."""
-        return self.copy('poses')[-1][0]
+        return self._odom.latest().header.stamp.to_sec()
 
     def wait_sim_seconds(self, seconds, timeout):
         end = self.now() + seconds
@@ -136,11 +136,12 @@ class RobotWatch:
         return [pose for pose in self.copy('poses') if pose[0] >= start]
 
     def front_range(self):
-        return self.copy('scans')[-1].ranges[0]
+        return self._scans.latest().ranges[0]
 
 
-def path_length(poses):
-    return sum(math.hypot(b[1] - a[1], b[2] - a[2]) for a, b in zip(poses, poses[1:]))
+def travelled(poses):
+    """Distance driven along (sim time, x, y, yaw) poses, in metres."""
+    return path_length([(x, y) for _, x, y, _ in poses])
 
 
 def largest_move(poses):

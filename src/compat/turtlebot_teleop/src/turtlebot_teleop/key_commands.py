@@ -51,7 +51,7 @@ def _ramp(current, target, step):
     return max(target, current - step)
 
 
-class KeyboardTeleop:
+class KeyCommands:
     """The state of the teleop: current speeds, the direction asked for, the velocity being sent."""
 
     def __init__(self, speed=DEFAULT_SPEED, turn=DEFAULT_TURN):

@@ -4,8 +4,8 @@ import sys
 import numpy as np
 from PIL import Image
 
-from course_common.screen import VirtualScreen, can_make_screens, red_pixels
-from course_common.testing import wait_until
+from course_testing.screen import VirtualScreen, can_make_screens, red_pixels
+from course_testing.waiting import wait_until
 
 RED_WINDOW = """
 import tkinter

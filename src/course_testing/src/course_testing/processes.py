@@ -1,27 +1,36 @@
-"""Test helpers: wait for a condition instead of sleeping, and drive a program through a pty."""
+"""Starting, driving and stopping what a test, a benchmark or the tour runs beside the user's programs."""
 import os
 import pty
 import select
+import signal
+import socket
 import subprocess
-import time
 
-from course_common.processes import stop_process_group
+from course_testing.waiting import wait_until
 
 
-def wait_until(condition, timeout, what='the condition', poll=0.01):
-    """Poll condition() until it returns a true value and return that value.
+def free_port():
+    """A TCP port that is free on loopback now: for a private master, so that we never meet (or
+    take) one the user runs on 11311."""
+    with socket.socket() as probe:
+        probe.bind(('127.0.0.1', 0))
+        return probe.getsockname()[1]
 
-    Raises AssertionError naming `what` when timeout seconds pass first, so a test fails with a
-    sentence rather than hanging or passing by luck.
-    """
-    deadline = time.monotonic() + timeout
-    while True:
-        value = condition()
-        if value:
-            return value
-        if time.monotonic() > deadline:
-            raise AssertionError('timed out after %.1f s waiting for %s' % (timeout, what))
-        time.sleep(poll)
+
+def stop_process_group(process, timeout=15.0):
+    """SIGINT a process started with start_new_session=True and everything it started (as Ctrl-C
+    in a terminal would, so ROS nodes shut down cleanly and save what they save at shutdown);
+    SIGKILL the group if it is still there after timeout seconds. Returns the exit code."""
+    if process.poll() is None:
+        try:
+            os.killpg(process.pid, signal.SIGINT)
+            process.wait(timeout)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait()
+        except ProcessLookupError:
+            process.wait()
+    return process.returncode
 
 
 class PtyProgram:

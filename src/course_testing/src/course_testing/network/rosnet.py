@@ -17,11 +17,12 @@ import xmlrpc.client
 
 import rosgraph
 
-from course_common.processes import stop_process_group
-from course_common.testing import wait_until
+from course_testing.processes import stop_process_group
+from course_testing.waiting import wait_until
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 HERE = os.path.dirname(os.path.abspath(__file__))
+# The workspace: this file is src/course_testing/src/course_testing/network/rosnet.py in it.
+ROOT = os.path.abspath(os.path.join(HERE, *[os.pardir] * 5))
 PYTHON = '/usr/bin/python3'
 ENV_SCRIPT = os.path.join(ROOT, 'tools', 'env.sh')
 # Variables a caller's shell may carry that would change what tools/env.sh gives a fresh shell.
@@ -41,12 +42,6 @@ def project_environment(**given):
     """The environment of a fresh shell that exports `given` (as the README tells users to, e.g.
     ROS_MASTER_URI and ROS_IP for two machines) and then runs `source tools/env.sh`."""
     return dict(_sourced_environment(tuple(sorted(given.items()))))
-
-
-def free_port():
-    with socket.socket() as probe:
-        probe.bind(('127.0.0.1', 0))
-        return probe.getsockname()[1]
 
 
 class Process:
@@ -156,7 +151,7 @@ def master_is_online(uri):
 
 
 # Waits, inside a network namespace, until the master of ROS_MASTER_URI answers.
-WAIT_FOR_MASTER = ('import rosgraph\nfrom course_common.testing import wait_until\n'
+WAIT_FOR_MASTER = ('import rosgraph\nfrom course_testing.waiting import wait_until\n'
                    'wait_until(rosgraph.is_master_online, 20, "the master of ROS_MASTER_URI", poll=0.1)\n')
 
 

@@ -2,7 +2,7 @@ import socket
 import subprocess
 import sys
 
-from course_common.processes import free_port, stop_process_group
+from course_testing.processes import free_port, stop_process_group
 
 TRAPS_SIGINT = '''
 import signal, sys, time

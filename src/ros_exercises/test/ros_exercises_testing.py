@@ -9,8 +9,9 @@ import rospy
 from std_srvs.srv import Trigger
 from turtlesim.msg import Pose
 
-from course_common.processes import stop_process_group
-from course_common.testing import PtyProgram, wait_until
+from course_testing.processes import PtyProgram, stop_process_group
+from course_testing.recording import TopicRecorder
+from course_testing.waiting import wait_until
 
 
 class Command:
@@ -54,24 +55,15 @@ def run(*argv, timeout=30):
     return result.returncode, result.stdout
 
 
-class PoseRecorder:
-    """Every pose of one turtle as rows of x, y, theta, linear_velocity, angular_velocity."""
+def turtle_poses(turtle):
+    """A recorder of the turtle's poses."""
+    return TopicRecorder('/%s/pose' % turtle, Pose)
 
-    def __init__(self, turtle):
-        self.poses = []
-        self._subscriber = rospy.Subscriber('/%s/pose' % turtle, Pose, self._record, queue_size=1000)
 
-    def _record(self, pose):
-        self.poses.append((pose.x, pose.y, pose.theta, pose.linear_velocity, pose.angular_velocity))
-
-    def array(self):
-        return numpy.array(self.poses)
-
-    def wait_for(self, count, timeout=30):
-        wait_until(lambda: len(self.poses) >= count, timeout, what='%d poses on %s' % (count, self._subscriber.name))
-
-    def close(self):
-        self._subscriber.unregister()
+def pose_array(recorder):
+    """The poses recorded so far as rows of x, y, theta, linear_velocity, angular_velocity."""
+    return numpy.array([(pose.x, pose.y, pose.theta, pose.linear_velocity, pose.angular_velocity)
+                        for pose in recorder.messages()])
 
 
 def save_canvas(path):

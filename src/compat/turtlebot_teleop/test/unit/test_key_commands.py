@@ -1,21 +1,21 @@
 """The teleop's key logic, fed key by key and pass by pass."""
 import pytest
 
-from turtlebot_teleop.keys import BANNER, MOVE_KEYS, KeyboardTeleop
+from turtlebot_teleop.key_commands import BANNER, MOVE_KEYS, KeyCommands
 
 
-def run_passes(teleop, count, key=None):
+def run_passes(commands, count, key=None):
     """count passes, pressing `key` in each if given; returns the velocities sent after the last."""
     sent = None
     for _ in range(count):
         if key is not None:
-            teleop.press(key)
-        sent = teleop.end_pass()
+            commands.press(key)
+        sent = commands.end_pass()
     return sent
 
 
 def test_still_before_any_key():
-    assert run_passes(KeyboardTeleop(), 3) == (0.0, 0.0)
+    assert run_passes(KeyCommands(), 3) == (0.0, 0.0)
 
 
 @pytest.mark.parametrize('key, direction', [
@@ -23,14 +23,14 @@ def test_still_before_any_key():
     ('u', (1, 1)), (',', (-1, 0)), ('.', (-1, 1)), ('m', (-1, -1)),
 ])
 def test_held_move_key_reaches_default_speeds(key, direction):
-    linear, angular = run_passes(KeyboardTeleop(), 20, key)
+    linear, angular = run_passes(KeyCommands(), 20, key)
     assert linear == pytest.approx(0.2 * direction[0])
     assert angular == pytest.approx(1.0 * direction[1])
 
 
 def test_ramps_by_one_step_per_pass():
-    teleop = KeyboardTeleop()
-    sent = [run_passes(teleop, 1, 'u') for _ in range(12)]
+    commands = KeyCommands()
+    sent = [run_passes(commands, 1, 'u') for _ in range(12)]
     assert [linear for linear, _ in sent][:3] == pytest.approx([0.02, 0.04, 0.06])
     assert [angular for _, angular in sent][:3] == pytest.approx([0.1, 0.2, 0.3])
     assert sent[9] == pytest.approx((0.2, 1.0))  # 10 passes (1 s) to full speed
@@ -38,26 +38,26 @@ def test_ramps_by_one_step_per_pass():
 
 
 def test_let_go_stops_smoothly_after_four_idle_passes():
-    teleop = KeyboardTeleop()
-    run_passes(teleop, 10, 'i')
-    assert [run_passes(teleop, 1)[0] for _ in range(4)] == pytest.approx([0.2] * 4)
-    assert run_passes(teleop, 1)[0] == pytest.approx(0.18)  # the 5th idle pass starts to slow down
-    assert run_passes(teleop, 9)[0] == pytest.approx(0.0)
+    commands = KeyCommands()
+    run_passes(commands, 10, 'i')
+    assert [run_passes(commands, 1)[0] for _ in range(4)] == pytest.approx([0.2] * 4)
+    assert run_passes(commands, 1)[0] == pytest.approx(0.18)  # the 5th idle pass starts to slow down
+    assert run_passes(commands, 9)[0] == pytest.approx(0.0)
 
 
 @pytest.mark.parametrize('stop_key', [' ', 'k'])
 def test_stop_keys_stop_at_once(stop_key):
-    teleop = KeyboardTeleop()
-    run_passes(teleop, 10, 'u')
-    assert run_passes(teleop, 1, stop_key) == (0.0, 0.0)
+    commands = KeyCommands()
+    run_passes(commands, 10, 'u')
+    assert run_passes(commands, 1, stop_key) == (0.0, 0.0)
 
 
 @pytest.mark.parametrize('other_key', ['a', '1', '\x1b', 'I'])
 def test_other_keys_stop_smoothly(other_key):
-    teleop = KeyboardTeleop()
-    run_passes(teleop, 10, 'u')
-    assert run_passes(teleop, 1, other_key) == pytest.approx((0.18, 0.9))
-    assert run_passes(teleop, 10) == (0.0, 0.0)
+    commands = KeyCommands()
+    run_passes(commands, 10, 'u')
+    assert run_passes(commands, 1, other_key) == pytest.approx((0.18, 0.9))
+    assert run_passes(commands, 10) == (0.0, 0.0)
 
 
 @pytest.mark.parametrize('key, speed, turn', [
@@ -66,28 +66,28 @@ def test_other_keys_stop_smoothly(other_key):
     ('e', 0.2, 1.1), ('c', 0.2, 0.9),
 ])
 def test_speed_keys_scale_by_ten_percent(key, speed, turn):
-    teleop = KeyboardTeleop()
-    assert teleop.press(key) is True
-    assert (teleop.speed, teleop.turn) == pytest.approx((speed, turn))
+    commands = KeyCommands()
+    assert commands.press(key) is True
+    assert (commands.speed, commands.turn) == pytest.approx((speed, turn))
 
 
 def test_speed_key_changes_target_while_moving():
-    teleop = KeyboardTeleop()
-    run_passes(teleop, 10, 'i')
-    teleop.press('q')
-    assert run_passes(teleop, 2, 'i') == pytest.approx((0.22, 0.0))
+    commands = KeyCommands()
+    run_passes(commands, 10, 'i')
+    commands.press('q')
+    assert run_passes(commands, 2, 'i') == pytest.approx((0.22, 0.0))
 
 
 def test_move_keys_do_not_report_a_speed_change():
-    teleop = KeyboardTeleop()
-    assert not any(teleop.press(key) for key in list(MOVE_KEYS) + [' ', 'k', 'a'])
+    commands = KeyCommands()
+    assert not any(commands.press(key) for key in list(MOVE_KEYS) + [' ', 'k', 'a'])
 
 
 def test_speeds_line_as_the_slide_prints_it():
-    teleop = KeyboardTeleop()
-    assert teleop.speeds_line() == 'currently:\tspeed 0.2\tturn 1'
-    teleop.press('q')
-    assert teleop.speeds_line() == 'currently:\tspeed 0.22\tturn 1.1'
+    commands = KeyCommands()
+    assert commands.speeds_line() == 'currently:\tspeed 0.2\tturn 1'
+    commands.press('q')
+    assert commands.speeds_line() == 'currently:\tspeed 0.22\tturn 1.1'
 
 
 def test_banner_shows_the_layout():

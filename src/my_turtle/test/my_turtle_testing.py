@@ -1,13 +1,13 @@
-"""Helpers for the my_turtle rostests: watch turtle1's poses, run a node and keep what it prints."""
+"""Helpers for the my_turtle rostests: record turtle1's poses, run a node and keep what it prints."""
 import math
 import re
 import threading
-import time
 
-import rospy
 from turtlesim.msg import Pose
 
-from course_common.testing import PtyProgram, wait_until
+from course_testing.processes import PtyProgram
+from course_testing.recording import TopicRecorder, path_length
+from course_testing.waiting import wait_until
 
 POSE_RATE_HZ = 62.5  # turtlesim publishes the pose at every 16 ms tick
 # A pose line as the slide shows it, e.g. "[ INFO] [1513815819.814175430]: x: 8.46, y: 5.54"
@@ -16,41 +16,16 @@ POSE_LINE = r'^\[ INFO\] \[\d+\.\d+\]: x: (\d+\.\d\d), y: (\d+\.\d\d)$'
 COLOUR_CODE = re.compile(r'\x1b\[[0-9;]*m')
 
 
-class PoseWatch:
-    """Keeps every turtle1 pose with the (monotonic) time it arrived."""
-
-    def __init__(self, topic='/turtle1/pose'):
-        self.samples = []
-        self._lock = threading.Lock()
-        rospy.Subscriber(topic, Pose, self._store)
-        wait_until(lambda: self.samples, 30, 'the first pose on %s' % topic)
-
-    def _store(self, pose):
-        with self._lock:
-            self.samples.append((time.monotonic(), pose))
-
-    def latest(self):
-        with self._lock:
-            return self.samples[-1][1]
-
-    def wait_for(self, condition, timeout, what):
-        """Wait until condition(latest pose) holds; returns that pose."""
-        return wait_until(lambda: condition(self.latest()) and self.latest(), timeout, what)
-
-    def record(self, seconds):
-        """The poses that arrive during the next `seconds` seconds, as (time, pose) pairs."""
-        with self._lock:
-            first = len(self.samples)
-        wait_until(lambda: self.samples[-1][0] - self.samples[first][0] >= seconds
-                   if len(self.samples) > first else False,
-                   seconds + 10, 'poses over %.1f s' % seconds)
-        with self._lock:
-            return self.samples[first:]
+def turtle1_poses():
+    """A recorder of turtle1's poses, once the first has arrived."""
+    recorder = TopicRecorder('/turtle1/pose', Pose)
+    recorder.wait_for_count(1, 30)
+    return recorder
 
 
-def path_length(samples):
-    """Distance travelled along the recorded poses, in metres."""
-    return sum(math.hypot(b.x - a.x, b.y - a.y) for (_, a), (_, b) in zip(samples, samples[1:]))
+def travelled(samples):
+    """Distance travelled along recorded (time, pose) entries, in metres."""
+    return path_length([(pose.x, pose.y) for _, pose in samples])
 
 
 def duration(samples):

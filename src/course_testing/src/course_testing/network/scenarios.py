@@ -17,9 +17,10 @@ import xmlrpc.client
 import rosgraph
 from rosgraph.network import encode_ros_handshake_header
 
-from course_common.testing import wait_until
-from rosnet import (HERE, PYTHON, descendants, free_port, listening_sockets, node_api, now,
-                    project_environment, received_bytes, start_master, start_probe)
+from course_testing.network.rosnet import (HERE, PYTHON, descendants, listening_sockets, node_api, now,
+                                           project_environment, received_bytes, start_master, start_probe)
+from course_testing.processes import free_port
+from course_testing.waiting import wait_until
 
 TURTLESIM_POSE_HZ = 62.5
 FAKE_TB3_ODOM_HZ = 30.0

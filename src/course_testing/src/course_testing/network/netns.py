@@ -9,9 +9,9 @@ import re
 import subprocess
 import time
 
-import faults
-from rosnet import now, project_environment, start_master, start_probe
-from scenarios import ODOM_FIELDS, POSE_FIELDS, TURTLESIM
+from course_testing.network import faults
+from course_testing.network.rosnet import now, project_environment, start_master, start_probe
+from course_testing.network.scenarios import ODOM_FIELDS, POSE_FIELDS, TURTLESIM
 
 HOST_A_ADDRESS = '10.200.0.1'
 HOST_B_ADDRESS = '10.200.0.2'
