@@ -11,6 +11,7 @@ from course_testing.screen import red_pixels
 
 TURTLESIM_BACKGROUND = (69, 86, 255)
 PEN = (179, 184, 255)
+RVIZ_ROBOT_BODY = (191, 191, 191)  # fake_tb3's URDF 'light' material, lit from above
 
 
 @pytest.fixture(scope='module')
@@ -64,6 +65,15 @@ def test_turtle_canvases_are_500_px_squares_with_a_trail(tour, name):
     assert pixels_of(image, PEN) > 200  # a 3 px pen over more than a metre (45 px/m)
 
 
+@pytest.mark.parametrize('name', ['ros_exercises-square.png', 'ros_exercises-triangle.png'])
+def test_the_report_shapes_show_the_turtle_that_drew_them(tour, name):
+    image = picture(tour[1], name)
+    # The turtle icon (about 22 px square, its colours vary with the icon) is all that is
+    # neither the background nor the pen.
+    turtle = image.shape[0] * image.shape[1] - pixels_of(image, TURTLESIM_BACKGROUND) - pixels_of(image, PEN)
+    assert turtle > 200
+
+
 def test_the_top_down_view_shows_the_world_and_a_long_trail(tour):
     image = picture(tour[1], 'move_turtlebot3-wander.png')
     assert image.shape[0] > 300 and image.shape[1] > 300
@@ -77,3 +87,9 @@ def test_the_top_down_view_shows_the_world_and_a_long_trail(tour):
 def test_the_rviz_screenshot_shows_red_laser_points(tour):
     assert picture(tour[1], 'rviz.png').shape == (1024, 1280, 3)
     assert red_pixels(os.path.join(str(tour[1]), 'rviz.png')) > 300
+
+
+def test_the_rviz_window_fills_the_screen_and_shows_the_robot(tour):
+    image = picture(tour[1], 'rviz.png')
+    assert pixels_of(image, (0, 0, 0)) < 0.01 * 1280 * 1024  # no black bands round the window
+    assert pixels_of(image, RVIZ_ROBOT_BODY) > 400  # the body, over 20 px square

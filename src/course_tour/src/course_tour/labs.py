@@ -11,7 +11,6 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import UInt32
 from turtlesim.msg import Pose
-from turtlesim.srv import Kill
 
 from course_testing.processes import PtyProgram
 from course_testing.recording import TopicRecorder, path_length
@@ -115,8 +114,7 @@ def report_shapes(session):
                               launched.output()), 120, 'the %s to be finished' % shape)
         points = _points(poses)
         poses.close()
-        # The canvas without the turtle on it: only the drawn figure.
-        rospy.ServiceProxy('/kill', Kill)('robotics')
+        # Saved while the turtle is still on the canvas: the picture shows it at the end of its figure.
         pictures.append(_save_canvas(session, 'turtlesim', 'ros_exercises-%s.png' % shape))
         session.stop(launched)
         lines.append('%s of 3 m sides: %.2f m driven, closed within %.3f m'
