@@ -8,8 +8,9 @@ import subprocess
 
 import pytest
 
-from course_common.testing import wait_until
-from rosnet import ROOT, descendants, free_port, is_loopback, listening_sockets, node_api, start_master
+from course_testing.network.rosnet import ROOT, descendants, is_loopback, listening_sockets, node_api, start_master
+from course_testing.processes import free_port
+from course_testing.waiting import wait_until
 
 DEVEL = os.path.join(os.environ.get('CATKIN_BUILD_BASE', ROOT), 'devel')
 LIBRARY = os.path.join(DEVEL, 'lib', 'libros_loopback.so')
