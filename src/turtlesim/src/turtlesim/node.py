@@ -6,8 +6,8 @@ and a service call waits for its request to be applied and returns its result. C
 removing a turtle's topics and services (slow calls to the master) happens in the service thread,
 so ticks stay on time. A turtle's topics and services are made all or none (a spawn that fails
 half-way removes what it made, and the turtle) and a kill gives all of them back; the topics share
-one epoll (turtlesim.shared_poll), so a turtle holds no open file of its own. Pictures (save_canvas, the ~canvas topic, the window) copy the world under
-a lock and are drawn outside it.
+one epoll (turtlesim.shared_poll), so a turtle holds no open file of its own. Pictures (save_canvas,
+the ~canvas topic, the window) copy the world under a lock and are drawn outside it.
 """
 import collections
 import os
@@ -85,8 +85,8 @@ class TurtleInterface:
              _unregister),
             ('cmd_vel subscriber',
              lambda: rospy.Subscriber(name + '/cmd_vel', Twist, node.on_cmd_vel, name, queue_size=1), _unregister),
-            ('set_pen service', lambda: rospy.Service(name + '/set_pen', SetPen, lambda req: node.set_pen(name, req)),
-             _shut_down),
+            ('set_pen service',
+             lambda: rospy.Service(name + '/set_pen', SetPen, lambda req: node.set_pen(name, req)), _shut_down),
             ('teleport_absolute service',
              lambda: rospy.Service(name + '/teleport_absolute', TeleportAbsolute,
                                    lambda req: node.teleport_absolute(name, req)), _shut_down),
