@@ -122,7 +122,7 @@ class OpenFilesTest(unittest.TestCase):
 
         # the other turtles are served as before: poses at 62.5 Hz, and a service of a turtle answers
         start = poses.count()
-        wait_until(lambda: poses.count() - start >= 126, 10.0, '126 poses of turtle1')
+        wait_until(lambda: poses.count() - start >= 190, 10.0, '190 poses of turtle1')
         times = [arrival for arrival, _ in poses.messages[start:]]
         self.assertAlmostEqual((len(times) - 1) / (times[-1] - times[0]), 62.5, delta=62.5 * 0.02)
 
