@@ -103,6 +103,10 @@ def main():
         started.append(subprocess.Popen(['roscore', '-p', str(port)], env=env, stdout=subprocess.DEVNULL,
                                         stderr=subprocess.DEVNULL, start_new_session=True))
         wait_until(rosgraph.is_master_online, 30.0, 'roscore on port %d' % port, poll=0.05)
+        hard = resource.getrlimit(resource.RLIMIT_NOFILE)[1]
+        if args.file_limit and hard != resource.RLIM_INFINITY:
+            args.file_limit = min(args.file_limit, hard)  # only root may raise a hard limit
+
         def file_limit():
             if args.file_limit:
                 resource.setrlimit(resource.RLIMIT_NOFILE, (args.file_limit, args.file_limit))
