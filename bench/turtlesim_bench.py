@@ -1,16 +1,19 @@
 #!/usr/bin/env python3
-"""turtlesim benchmark: tick rate, p99 gap between pose messages and CPU of the node, for 1/100/500 turtles.
+"""turtlesim benchmark: tick rate, p99 gap between pose messages, CPU and open files of the node,
+for 1/100/500/2000 turtles, under the open-file limit many desktops have (ulimit -n 1024).
 
-Starts its own roscore on a free port and a headless turtlesim_node, spawns turtles through /spawn,
-listens to the last turtle's pose, and prints a Markdown table. Run it after `source tools/env.sh`:
+Starts its own roscore on a free port and a headless turtlesim_node (its soft and hard open-file
+limit set to --file-limit), spawns turtles through /spawn, listens to the last turtle's pose, and
+prints a Markdown table. Run it after `source tools/env.sh`:
 
-    python3 bench/turtlesim_bench.py [--window SECONDS] [--sizes 1 100 500]
+    python3 bench/turtlesim_bench.py [--window SECONDS] [--sizes 1 100 500 2000] [--file-limit 1024]
 
 The CPU share is the node's user + system time (from /proc/<pid>/stat) over the measuring window,
 in percent of one core. Targets: 62.5 Hz, p99 gap <= 18 ms, CPU <= 3 %, 6 %, 35 %.
 """
 import argparse
 import os
+import resource
 import subprocess
 import sys
 import threading
@@ -65,6 +68,10 @@ def sleep_loop_p99_lateness(seconds):
     return lateness[int(0.99 * (len(lateness) - 1))] * 1000.0
 
 
+def open_files(pid):
+    return len(os.listdir('/proc/%d/fd' % pid))
+
+
 def measure(pid, topic, window):
     poses = PoseTimes(topic)
     wait_until(lambda: len(poses.between(0.0, time.monotonic())) >= 20, 20.0, 'poses on %s' % topic)
@@ -82,7 +89,9 @@ def measure(pid, topic, window):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     parser.add_argument('--window', type=float, default=10.0, help='seconds measured per size (default 10)')
-    parser.add_argument('--sizes', type=int, nargs='+', default=[1, 100, 500], help='turtle counts')
+    parser.add_argument('--sizes', type=int, nargs='+', default=[1, 100, 500, 2000], help='turtle counts')
+    parser.add_argument('--file-limit', type=int, default=1024,
+                        help='soft and hard open-file limit of the node (default 1024; 0: inherit)')
     args = parser.parse_args()
 
     port = free_port()
@@ -94,28 +103,46 @@ def main():
         started.append(subprocess.Popen(['roscore', '-p', str(port)], env=env, stdout=subprocess.DEVNULL,
                                         stderr=subprocess.DEVNULL, start_new_session=True))
         wait_until(rosgraph.is_master_online, 30.0, 'roscore on port %d' % port, poll=0.05)
+        hard = resource.getrlimit(resource.RLIMIT_NOFILE)[1]
+        if args.file_limit and hard != resource.RLIM_INFINITY:
+            args.file_limit = min(args.file_limit, hard)  # only root may raise a hard limit
+
+        def file_limit():
+            if args.file_limit:
+                resource.setrlimit(resource.RLIMIT_NOFILE, (args.file_limit, args.file_limit))
         started.append(subprocess.Popen(['rosrun', 'turtlesim', 'turtlesim_node'], env=env,
                                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                                        start_new_session=True))
+                                        start_new_session=True, preexec_fn=file_limit))
         rospy.init_node('turtlesim_bench', disable_signals=True)
         rospy.wait_for_service('/spawn', 30.0)
         node_uri = rosgraph.Master('/turtlesim_bench').lookupNode('/turtlesim')
         pid = xmlrpc.client.ServerProxy(node_uri).getPid('/turtlesim_bench')[2]
         spawn = rospy.ServiceProxy('/spawn', Spawn)
 
-        print('| turtles | tick rate (Hz) | p99 gap (ms) | max gap (ms) | CPU (% of a core) | CPU target |')
-        print('|--------:|---------------:|-------------:|-------------:|------------------:|-----------:|')
+        files_at_start = open_files(pid)
+        print('| turtles | tick rate (Hz) | p99 gap (ms) | max gap (ms) | CPU (% of a core) | CPU target '
+              '| open files | spawn time (ms) |')
+        print('|--------:|---------------:|-------------:|-------------:|------------------:|-----------:'
+              '|-----------:|----------------:|')
         count, last = 1, 'turtle1'
         for size in sorted(args.sizes):
+            spawned, spawn_start = 0, time.monotonic()
             while count < size:
                 count += 1
+                spawned += 1
                 last = spawn(1.0 + (count % 20) * 0.45, 1.0 + (count // 20 % 20) * 0.45, 0.0, '').name
+            spawn_ms = '%.1f' % (1000.0 * (time.monotonic() - spawn_start) / spawned) if spawned else '-'
+            files = open_files(pid)  # before measure(): its own subscriber adds a connection
             rate, p99, worst, cpu = measure(pid, '/%s/pose' % last, args.window)
             target = '<= %.0f %%' % TARGET_CPU[size] if size in TARGET_CPU else '-'
-            print('| %7d | %14.2f | %12.1f | %12.1f | %17.1f | %10s |' % (size, rate, p99, worst, cpu, target))
+            print('| %7d | %14.2f | %12.1f | %12.1f | %17.1f | %10s | %10d | %15s |'
+                  % (size, rate, p99, worst, cpu, target, files, spawn_ms))
             sys.stdout.flush()
+        soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE) if not args.file_limit else (args.file_limit,) * 2
         print('\nTargets: %.1f Hz, p99 gap <= %.0f ms. Window %.0f s per size, %d cores, load average %.2f.'
               % (TARGET_RATE, TARGET_P99_MS, args.window, os.cpu_count(), os.getloadavg()[0]))
+        print('Open-file limit of the node: soft %d, hard %d; %d files open with turtle1 alone.'
+              % (soft, hard, files_at_start))
         print('Machine jitter: a bare Python sleep loop on the same 16 ms grid wakes up to %.1f ms late (p99), '
               'which adds to every gap above.' % sleep_loop_p99_lateness(5.0))
     finally:

@@ -4,8 +4,10 @@ Threads: one tick thread owns the world and steps it every 16 ms. ROS callbacks 
 calls) never touch the world: they queue a request that the tick thread applies between two ticks,
 and a service call waits for its request to be applied and returns its result. Creating and
 removing a turtle's topics and services (slow calls to the master) happens in the service thread,
-so ticks stay on time. Pictures (save_canvas, the ~canvas topic, the window) copy the world under
-a lock and are drawn outside it.
+so ticks stay on time. A turtle's topics and services are made all or none (a spawn that fails
+half-way removes what it made, and the turtle) and a kill gives all of them back; the topics share
+one epoll (turtlesim.shared_poll), so a turtle holds no open file of its own. Pictures (save_canvas,
+the ~canvas topic, the window) copy the world under a lock and are drawn outside it.
 """
 import collections
 import os
@@ -19,7 +21,9 @@ from geometry_msgs.msg import Twist
 from sensor_msgs.msg import Image
 from std_srvs.srv import Empty, EmptyResponse, Trigger, TriggerResponse
 
-from turtlesim import picture
+from turtlesim import picture, shared_poll
+from turtlesim.holdings import (LOW_FILE_LIMIT, Holdings, capacity_note, open_file_count, open_file_limit,
+                                raise_open_file_limit, spawn_refusal)
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import (Kill, KillResponse, SetPen, SetPenResponse, Spawn, SpawnResponse,
                            TeleportAbsolute, TeleportAbsoluteResponse, TeleportRelative,
@@ -59,27 +63,42 @@ class _Request:
         self.error = None
 
 
+def _unregister(topic):
+    topic.unregister()
+
+
+def _shut_down(service):
+    service.shutdown()
+
+
 class TurtleInterface:
-    """The topics and services of one turtle (under the turtle's name, relative to the node)."""
+    """The topics and services of one turtle (under the turtle's name, relative to the node).
+
+    Made all or none: if one cannot be made, those already made are removed and the error raised."""
 
     def __init__(self, node, name):
-        self.pose = rospy.Publisher(name + '/pose', Pose, queue_size=1)
-        self.color = rospy.Publisher(name + '/color_sensor', Color, queue_size=1)
-        self.cmd_vel = rospy.Subscriber(name + '/cmd_vel', Twist, node.on_cmd_vel, name, queue_size=1)
-        self.services = [
-            rospy.Service(name + '/set_pen', SetPen, lambda req: node.set_pen(name, req)),
-            rospy.Service(name + '/teleport_absolute', TeleportAbsolute,
-                          lambda req: node.teleport_absolute(name, req)),
-            rospy.Service(name + '/teleport_relative', TeleportRelative,
-                          lambda req: node.teleport_relative(name, req)),
-        ]
+        self.name = name
+        self.holdings = Holdings()
+        self.pose, self.color, _, _, _, _ = self.holdings.take_all([
+            ('pose publisher', lambda: rospy.Publisher(name + '/pose', Pose, queue_size=1), _unregister),
+            ('color_sensor publisher', lambda: rospy.Publisher(name + '/color_sensor', Color, queue_size=1),
+             _unregister),
+            ('cmd_vel subscriber',
+             lambda: rospy.Subscriber(name + '/cmd_vel', Twist, node.on_cmd_vel, name, queue_size=1), _unregister),
+            ('set_pen service',
+             lambda: rospy.Service(name + '/set_pen', SetPen, lambda req: node.set_pen(name, req)), _shut_down),
+            ('teleport_absolute service',
+             lambda: rospy.Service(name + '/teleport_absolute', TeleportAbsolute,
+                                   lambda req: node.teleport_absolute(name, req)), _shut_down),
+            ('teleport_relative service',
+             lambda: rospy.Service(name + '/teleport_relative', TeleportRelative,
+                                   lambda req: node.teleport_relative(name, req)), _shut_down),
+        ])
 
     def close(self):
-        self.pose.unregister()
-        self.color.unregister()
-        self.cmd_vel.unregister()
-        for service in self.services:
-            service.shutdown()
+        """Give everything back; what cannot be is reported, and the rest is still given back."""
+        for label, error in self.holdings.release_all():
+            rospy.logwarn('Turtle [%s]: could not remove its %s: %s' % (self.name, label, error))
 
     def publish(self, turtle):
         if self.pose.get_num_connections():
@@ -91,10 +110,14 @@ class TurtleInterface:
 
 class TurtlesimNode:
     def __init__(self):
+        shared_poll.install(rospy.topics)  # before any topic exists, rosout's included
+        file_limit, _ = raise_open_file_limit()
         # Ctrl-C is handled in main(): rospy's own handler could run while this thread registers
         # with the master and wait for a lock that this very thread holds.
         rospy.init_node('turtlesim', disable_signals=True)
         rospy.loginfo('Starting turtlesim with node name %s' % rospy.get_name())
+        if file_limit < LOW_FILE_LIMIT:
+            rospy.loginfo(capacity_note(file_limit, open_file_count() or 0))
         for channel, value in zip(('r', 'g', 'b'), DEFAULT_BACKGROUND):
             if not rospy.has_param('~background_' + channel):
                 rospy.set_param('~background_' + channel, value)
@@ -220,13 +243,25 @@ class TurtlesimNode:
         background = self.read_background()
         with self._registry_lock:
             self.call(lambda now: self.world.reset(background))
-            self._sync_interfaces()
+            failed = self._sync_interfaces()
+        if failed:
+            message = 'Cannot spawn turtle [%s]: %s' % next(iter(failed.items()))
+            rospy.logerr(message)
+            raise rospy.ServiceException(message)
         return EmptyResponse()
 
     def spawn(self, req):
         with self._registry_lock:
+            refusal = spawn_refusal(req.name, open_file_count(), open_file_limit())
+            if refusal is not None:
+                rospy.logerr(refusal)
+                raise rospy.ServiceException(refusal)
             name = self.call(lambda now: self.world.spawn(req.name, req.x, req.y, req.theta))
-            self._sync_interfaces()
+            failed = self._sync_interfaces()
+        if name in failed:
+            message = 'Cannot spawn turtle [%s]: %s' % (name, failed[name])
+            rospy.logerr(message)
+            raise rospy.ServiceException(message)
         return SpawnResponse(name)
 
     def kill(self, req):
@@ -236,15 +271,35 @@ class TurtlesimNode:
         return KillResponse()
 
     def _sync_interfaces(self):
-        """Give every turtle of the world its topics and services, and remove those of the dead."""
+        """Give every turtle of the world its topics and services, and remove those of the dead.
+
+        A turtle whose topics and services cannot be made is taken out of the world again (so no
+        half-made turtle stays): returns {name: error} of those."""
         with self.world_lock:
             names = [turtle.name for turtle in self.world.turtles()]
         current = self.interfaces
-        updated = {name: current[name] if name in current else TurtleInterface(self, name) for name in names}
+        updated, failed = {}, {}
+        for name in names:
+            if name in current:
+                updated[name] = current[name]
+                continue
+            try:
+                updated[name] = TurtleInterface(self, name)
+            except Exception as error:  # e.g. OSError: no file left for the call to the master
+                failed[name] = error
         self.interfaces = updated
         for name, interface in current.items():
             if name not in updated:
                 interface.close()
+        for name in failed:
+            self._remove_from_world(name)
+        return failed
+
+    def _remove_from_world(self, name):
+        """Take a turtle out of the world without a log line: undoing a spawn that failed."""
+        request = self.submit(lambda now: self.world.kill(name), waited=True)
+        while not request.done.wait(SHUTDOWN_POLL) and not rospy.is_shutdown():
+            pass
 
     # --- pictures ---
     def revision(self):
