@@ -14,12 +14,13 @@ import rospy
 import rostest
 from geometry_msgs.msg import Twist
 
-from course_common.processes import stop_process_group
-from course_common.testing import wait_until
+from course_testing.processes import stop_process_group
+from course_testing.recording import TopicRecorder
+from course_testing.waiting import wait_until
 from turtlesim.holdings import FILE_RESERVE
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, Spawn, TeleportAbsolute
-from turtlesim_testing import Recorder, graph
+from turtlesim_testing import graph
 
 FILE_LIMIT = 256
 TURTLES_BEYOND_THE_LIMIT = 400  # three open files each before: the old node stopped at about 80
@@ -68,7 +69,7 @@ class OpenFilesTest(unittest.TestCase):
         """(median gap in ms, mean rate in Hz) of the next `count` poses."""
         start = poses.count()
         wait_until(lambda: poses.count() - start >= count, 10.0, '%d poses of turtle1' % count)
-        times = [arrival for arrival, _ in poses.messages[start:]]
+        times = [arrival for arrival, _ in poses.entries(start)]
         gaps = sorted(later - earlier for earlier, later in zip(times, times[1:]))
         return 1000.0 * gaps[len(gaps) // 2], (len(times) - 1) / (times[-1] - times[0])
 
@@ -95,7 +96,7 @@ class OpenFilesTest(unittest.TestCase):
         self.kill('many0')
 
     def test_a_spawn_at_the_limit_gets_a_clear_error_and_the_node_keeps_serving(self):
-        poses = Recorder('/turtle1/pose', Pose)
+        poses = TopicRecorder('/turtle1/pose', Pose)
         self.addCleanup(poses.close)
         poses.next_message(10.0)
         before = self.open_files()
