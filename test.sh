@@ -89,10 +89,15 @@ fi
 #    port) and, when no package is named, the workspace's tests in tests/.
 jobs_file="$LOGS/jobs.txt"
 : > "$jobs_file"
+# Steps that measure wall-clock rates and latencies (a 30 Hz topic's longest gap, how fast a node
+# notices a dead master): they run first, with nothing beside them.
+ALONE=("pytest tests/network")
 # add_job LABEL EXIT_CODES COMMAND...: one line of run_test_jobs.py's list (EXIT_CODES: the statuses
 # after which the command's result file tells the rest).
 add_job() {
-    { printf '%s\t%s\t' "$1" "$2"; shift 2; printf '%q ' "$@"; echo; } >> "$jobs_file"
+    local sharing=shared
+    [[ " ${ALONE[*]} " == *" $1 "* ]] && sharing=alone
+    { printf '%s\t%s\t%s\t' "$1" "$2" "$sharing"; shift 2; printf '%q ' "$@"; echo; } >> "$jobs_file"
 }
 if [ $# -eq 0 ]; then
     for part in "${SLOW_WORKSPACE_TESTS[@]}"; do

@@ -147,3 +147,28 @@ def test_a_package_in_a_catkin_ignored_folder_is_not_a_package(workspace):
     write(str(workspace / 'src/old/CATKIN_IGNORE'), '')
     code, output = run_test_command(workspace)
     assert (code, last_line(output)) == (0, '5 passed, 0 failed'), output
+
+
+def test_a_job_that_needs_the_machine_alone_runs_with_nothing_beside_it(tmp_path):
+    """run_test_jobs.py: `alone` jobs never overlap another job; the others run two at a time."""
+    spans = tmp_path / 'spans.txt'
+    job = 'echo "%s start $(date +%%s.%%N)" >> {0}; sleep 0.3; echo "%s end $(date +%%s.%%N)" >> {0}'.format(spans)
+    lines = ['%s\t0\t%s\t%s\n' % (name, sharing, job % (name, name))
+             for name, sharing in [('a', 'shared'), ('b', 'shared'), ('rates', 'alone'), ('c', 'shared')]]
+    result = subprocess.run(
+        ['/usr/bin/python3', os.path.join(ROOT, 'tools', 'run_test_jobs.py'), '--jobs', '2',
+         '--logs', str(tmp_path / 'logs'), '--times', str(tmp_path / 'times.txt'),
+         '--failed-steps', str(tmp_path / 'failed.txt')],
+        input=''.join(lines), stdout=subprocess.PIPE, universal_newlines=True, timeout=60)
+    assert result.returncode == 0 and result.stdout.count('\n') == 4, result.stdout
+    events = {}
+    for line in spans.read_text().splitlines():
+        name, what, at = line.split()
+        events[name, what] = float(at)
+    alone = (events['rates', 'start'], events['rates', 'end'])
+    for name in 'abc':
+        assert events[name, 'end'] <= alone[0] or events[name, 'start'] >= alone[1], events
+    overlapping = [events[x, 'start'] < events[y, 'end'] and events[y, 'start'] < events[x, 'end']
+                   for x, y in [('a', 'b'), ('a', 'c'), ('b', 'c')]]
+    assert any(overlapping), events  # the shared ones do run side by side
+    assert (tmp_path / 'failed.txt').read_text() == ''

@@ -2,9 +2,11 @@
 """Runs the slow steps of ./test.sh (the rostests, the workspace pytest) a few at a time.
 
 Usage: run_test_jobs.py --jobs N --logs DIR --times FILE --failed-steps FILE < JOBS
-JOBS has one job per line: `label<TAB>exit codes that mean "ran, results written"<TAB>shell command`,
-e.g. `rostest fake_tb3/test/rviz.test<TAB>0,1,2<TAB>rostest ... rviz.test`. Each rostest starts its
-own master on a free port, so independent .test files may run side by side.
+JOBS has one job per line: `label<TAB>exit codes that mean "ran, results written"<TAB>alone|shared
+<TAB>shell command`, e.g. `rostest fake_tb3/test/rviz.test<TAB>0,1,2<TAB>shared<TAB>rostest ...`.
+Each rostest starts its own master on a free port, so independent .test files may run side by side.
+`alone` jobs run first, one at a time with nothing beside them: tests that measure wall-clock rates
+and latencies (a 30 Hz topic's longest gap), which a second test on a 2-core machine would disturb.
 
 Prints one line per job as it ends (label, seconds, exit status), and under a job that failed the
 lines of its log that say why. Each job's whole output goes to DIR/<label>.log. The durations are
@@ -30,10 +32,11 @@ def read_jobs(stream):
         if not line.strip():
             continue
         fields = line.rstrip('\n').split('\t')
-        if len(fields) != 3:
-            raise SystemExit('run_test_jobs: line %d is not label<TAB>codes<TAB>command' % number)
-        label, codes, command = fields
-        jobs.append((label, {int(code) for code in codes.split(',')}, command))
+        if len(fields) != 4 or fields[2] not in ('alone', 'shared'):
+            raise SystemExit('run_test_jobs: line %d is not label<TAB>codes<TAB>alone|shared<TAB>command'
+                             % number)
+        label, codes, sharing, command = fields
+        jobs.append((label, {int(code) for code in codes.split(',')}, sharing == 'alone', command))
     return jobs
 
 
@@ -62,21 +65,24 @@ def main():
     options = parser.parse_args()
     jobs = read_jobs(sys.stdin)
     known = read_times(options.times)
-    # Longest first, so that the last minutes are not one long job alone; unknown ones first of all.
-    jobs.sort(key=lambda job: -known.get(job[0], float('inf')))
+    # Those that need the machine alone first; then the longest first, so that the last minutes
+    # are not one long job alone (unknown ones first of all: on a first run, the order given).
+    jobs.sort(key=lambda job: (not job[2], -known.get(job[0], float('inf'))))
     os.makedirs(options.logs, exist_ok=True)
     waiting, running, failed_steps, times = list(jobs), {}, [], dict(known)
     while waiting or running:
         while waiting and len(running) < max(1, options.jobs):
-            label, codes, command = waiting.pop(0)
+            if running and (waiting[0][2] or any(entry[3] for entry in running.values())):
+                break  # an `alone` job waits for the others to end, and keeps the machine to itself
+            label, codes, alone, command = waiting.pop(0)
             log = open(log_name(options.logs, label), 'w')
             process = subprocess.Popen(['bash', '-c', command], stdout=log, stderr=subprocess.STDOUT,
                                        stdin=subprocess.DEVNULL)
-            running[process.pid] = (process, label, codes, log, time.monotonic())
+            running[process.pid] = (process, label, codes, alone, log, time.monotonic())
         pid, status = os.wait()
         if pid not in running:
             continue
-        process, label, codes, log, start = running.pop(pid)
+        process, label, codes, _, log, start = running.pop(pid)
         log.close()
         code = os.waitstatus_to_exitcode(status) if hasattr(os, 'waitstatus_to_exitcode') else status >> 8
         process.returncode = code
