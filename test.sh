@@ -110,8 +110,9 @@ if [ $# -eq 0 ]; then
             echo "test: tests/network/test_two_hosts.py needs root: not run here"
             args+=(--ignore="$ROOT/tests/network/test_two_hosts.py")
         fi
+        # Their temporary folders (the tour's pictures and logs) are kept beside the step's log.
         add_job "pytest tests/$part" 0,1 "${PYTEST[@]}" --junitxml="$RESULTS/pytest/$name.xml" \
-            "${args[@]}" "$ROOT/tests/$part"
+            --basetemp="$LOGS/$name" "${args[@]}" "$ROOT/tests/$part"
         expected+=(pytest/$name.xml)
     done
 fi
