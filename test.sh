@@ -90,13 +90,16 @@ fi
 jobs_file="$LOGS/jobs.txt"
 : > "$jobs_file"
 # Steps that measure wall-clock rates and latencies (a 30 Hz topic's longest gap, how fast a node
-# notices a dead master): they run first, with nothing beside them.
-ALONE=("pytest tests/network")
+# notices a dead master, turtlesim's 62.5 Hz): they run first, with nothing beside them.
+ALONE=("pytest tests/network" "rostest fake_tb3/test/real_time.test" "rostest turtlesim/test/interface.test"
+       "rostest ros_exercises/test/publisher_subscriber.test"
+       "rostest compat/turtlebot3_teleop/test/teleop_key.test")
 # add_job LABEL EXIT_CODES COMMAND...: one line of run_test_jobs.py's list (EXIT_CODES: the statuses
 # after which the command's result file tells the rest).
 add_job() {
     local sharing=shared
-    [[ " ${ALONE[*]} " == *" $1 "* ]] && sharing=alone
+    local step
+    for step in "${ALONE[@]}"; do [ "$step" = "$1" ] && sharing=alone; done
     { printf '%s\t%s\t%s\t' "$1" "$2" "$sharing"; shift 2; printf '%q ' "$@"; echo; } >> "$jobs_file"
 }
 if [ $# -eq 0 ]; then
