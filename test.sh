@@ -89,11 +89,13 @@ fi
 #    port) and, when no package is named, the workspace's tests in tests/.
 jobs_file="$LOGS/jobs.txt"
 : > "$jobs_file"
-# Steps that measure wall-clock rates and latencies (a 30 Hz topic's longest gap, how fast a node
-# notices a dead master, turtlesim's 62.5 Hz): they run first, with nothing beside them.
+# Steps that measure wall-clock rates, speeds and latencies (a 30 Hz topic's longest gap, how fast
+# a node notices a dead master, turtlesim's 62.5 Hz, a turtle's 0.5 m/s, a 10x real-time factor):
+# they run first, with nothing beside them.
 ALONE=("pytest tests/network" "rostest fake_tb3/test/real_time.test" "rostest turtlesim/test/interface.test"
        "rostest ros_exercises/test/publisher_subscriber.test"
-       "rostest compat/turtlebot3_teleop/test/teleop_key.test")
+       "rostest compat/turtlebot3_teleop/test/teleop_key.test" "rostest my_turtle/test/stages.test"
+       "rostest turtlesim/test/programs.test" "rostest fake_tb3/test/sim_time.test")
 # add_job LABEL EXIT_CODES COMMAND...: one line of run_test_jobs.py's list (EXIT_CODES: the statuses
 # after which the command's result file tells the rest).
 add_job() {
