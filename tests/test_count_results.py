@@ -53,3 +53,29 @@ def test_a_step_that_failed_before_writing_results_is_a_failure(tmp_path):
 
 def test_no_results_at_all_is_not_a_pass(tmp_path):
     assert run_counter(tmp_path)[:2] == (1, '0 passed, 0 failed')
+
+
+def test_an_expected_result_file_that_is_missing_fails_the_run(tmp_path):
+    write(tmp_path, 'pytest.xml', [('a', '')])
+    code, last, out = run_counter(tmp_path, '--expect', 'pytest/turtlesim.xml')
+    assert (code, last) == (1, '1 passed, 1 failed')
+    assert 'FAILED: pytest/turtlesim.xml: no test results' in out
+
+
+def test_an_expected_result_file_without_test_cases_fails_the_run(tmp_path):
+    write(tmp_path, 'pytest.xml', [('a', '')])
+    write(tmp_path, 'empty.xml', [])  # pytest's file when it collected nothing
+    assert run_counter(tmp_path, '--expect', 'empty.xml')[:2] == (1, '1 passed, 1 failed')
+
+
+def test_a_passing_rostest_wrapper_without_the_nodes_results_fails(tmp_path):
+    write(tmp_path, 'rostest-test_square.xml', [('testsquare', '')])
+    code, last, out = run_counter(tmp_path, '--expect', 'rostest-test_square.xml')
+    assert (code, last) == (1, '0 passed, 1 failed')
+    assert 'test node square passed but left no test cases in rosunit-square.xml' in out
+
+
+def test_expected_files_that_are_there_count_as_usual(tmp_path):
+    write(tmp_path, 'rosunit-square.xml', [('corners', '')])
+    write(tmp_path, 'rostest-test_square.xml', [('testsquare', '')])
+    assert run_counter(tmp_path, '--expect', 'rostest-test_square.xml')[:2] == (0, '1 passed, 0 failed')

@@ -35,8 +35,10 @@ class RvizTest(unittest.TestCase):
                                     env=screen.environment(), start_new_session=True,
                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
             try:
+                # A screenshot costs a tenth of a second of CPU: taken back to back they starve
+                # rviz's software rendering on a busy machine, so twice a second.
                 wait_until(lambda: red_points(screen, screenshot) > 100, 90,
-                           'red laser points on the rviz screen')
+                           'red laser points on the rviz screen', poll=0.5)
                 rospy.loginfo('rviz: %d red pixels, screenshot %s', red_points(screen, screenshot),
                               screenshot)
                 self.assertIsNotNone(rospy.get_param('/robot_description', None))

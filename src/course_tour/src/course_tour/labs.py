@@ -192,8 +192,9 @@ def turtlebot3_rviz(session):
     with VirtualScreen() as screen:
         rviz = session.launch('turtlebot3_gazebo', 'turtlebot3_gazebo_rviz.launch',
                               env=screen.environment(session.env))
+        # Twice a second: screenshots back to back would starve rviz's software rendering.
         wait_until(lambda: red_pixels(screen.screenshot(screenshot)) > 300, 90,
-                   'rviz to draw the laser points')
+                   'rviz to draw the laser points', poll=0.5)
         red = red_pixels(screenshot)
         session.stop(rviz)
     session.stop(world)

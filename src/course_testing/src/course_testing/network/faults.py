@@ -17,6 +17,9 @@ STOP_TIMEOUT = 1.0 + 0.5
 def course_node(graph, name, *argv):
     """Start a course node of the workspace with rosrun, in the graph's environment, once turtle1
     is still: whatever moves it afterwards is this node, not the last commands of an earlier one."""
+    # A probe started just before may take seconds to come up on a busy machine: poses first,
+    # then stillness within the stop time.
+    graph.main_probe.wait_for_messages(1, RECOVERY_TIMEOUT)
     wait_for_pose(graph, stopped, 'turtle1 to be still before %s starts' % name, STOP_TIMEOUT)
     return graph.processes.start(name, ['rosrun'] + list(argv), graph.env)
 

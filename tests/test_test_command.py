@@ -1,0 +1,174 @@
+"""./test.sh runs every test on its first run on a fresh machine, and fails when a step finds none.
+
+Each case runs the real test.sh, count_results.py and run_test_jobs.py in a small workspace of its
+own, with a tools/setup.sh and tools/env.sh that install and build nothing, and with a PATH that has
+no catkin on it (as on a fresh machine before tools/setup.sh has installed it).
+"""
+import os
+import shutil
+import subprocess
+
+import pytest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# What test.sh may run before tools/setup.sh has installed anything: a fresh Debian's base tools.
+BASE_TOOLS = ['bash', 'cat', 'dirname', 'env', 'find', 'head', 'id', 'rm', 'mkdir', 'sed', 'sort',
+              'tail', 'tr', 'wc']
+
+SETUP = """#!/bin/bash
+# Installs nothing and builds nothing; says that it ran (test.sh must call it before any catkin tool).
+echo "setup $*" >> "$(dirname "$0")/../setup_calls.txt"
+"""
+ENV = """# After setup: Debian's tools, and the fake rostest in front of them.
+export PATH="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/fake_bin:/usr/bin:/bin"
+"""
+# Writes nothing and exits 0: a rostest that registered a test but left no result file.
+SILENT_ROSTEST = '#!/bin/bash\nexit 0\n'
+# Writes a passing wrapper and the test node's results, as rostest does.
+GOOD_ROSTEST = """#!/bin/bash
+for arg; do case "$arg" in --package=*) pkg=${arg#--package=};; esac; done
+while [ $# -gt 0 ]; do
+    case "$1" in --results-filename) name=${2%.xml}; shift;; --results-base-dir) base=$2; shift;; esac
+    shift
+done
+mkdir -p "$base/$pkg"
+echo '<testsuite><testcase classname="r" name="testnode"/></testsuite>' > "$base/$pkg/rostest-$name.xml"
+echo '<testsuite><testcase classname="n" name="case"/></testsuite>' > "$base/$pkg/rosunit-node.xml"
+"""
+PACKAGE_XML = '<?xml version="1.0"?>\n<package format="2">\n  <name>%s</name>\n</package>\n'
+PASSING_TESTS = 'def test_one():\n    assert 1 + 1 == 2\n\n\ndef test_two():\n    assert "ab".upper() == "AB"\n'
+
+
+def write(path, text, mode=0o644):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, 'w') as out:
+        out.write(text)
+    os.chmod(path, mode)
+
+
+@pytest.fixture
+def workspace(tmp_path):
+    """A workspace with test.sh and its tools, two packages with two unit tests each, tests/ with one."""
+    ws = tmp_path / 'ws'
+    for name in ('test.sh', 'tools/count_results.py', 'tools/run_test_jobs.py'):
+        os.makedirs(str((ws / name).parent), exist_ok=True)
+        shutil.copy2(os.path.join(ROOT, name), str(ws / name))
+    write(str(ws / 'tools/setup.sh'), SETUP, 0o755)
+    write(str(ws / 'tools/env.sh'), ENV)
+    write(str(ws / 'tools/fake_bin/rostest'), GOOD_ROSTEST, 0o755)
+    add_package(ws, 'src/alpha', 'alpha', {'test_alpha.py': PASSING_TESTS})
+    add_package(ws, 'src/group/beta', 'beta', {'test_beta.py': PASSING_TESTS})
+    write(str(ws / 'tests/test_workspace.py'), 'def test_workspace():\n    assert True\n')
+    bin_dir = tmp_path / 'bin'  # every base tool, and no catkin
+    bin_dir.mkdir()
+    for tool in BASE_TOOLS:
+        os.symlink(shutil.which(tool, path='/usr/bin:/bin'), str(bin_dir / tool))
+    return ws
+
+
+def add_package(ws, folder, name, unit_files, rostests=()):
+    write(str(ws / folder / 'package.xml'), PACKAGE_XML % name)
+    write(str(ws / folder / 'CMakeLists.txt'), 'project(%s)\n' % name + ''.join(
+        'add_rostest(%s)\n' % test for test in rostests))
+    for file_name, text in unit_files.items():
+        write(str(ws / folder / 'test/unit' / file_name), text)
+
+
+def run_test_command(ws, *packages):
+    env = {'PATH': str(ws.parent / 'bin'), 'HOME': str(ws.parent)}
+    result = subprocess.run([str(ws / 'test.sh')] + list(packages), env=env, stdin=subprocess.DEVNULL,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                            timeout=120)
+    return result.returncode, result.stdout
+
+
+def last_line(output):
+    return output.rstrip().splitlines()[-1]
+
+
+def test_catkin_is_not_needed_to_find_the_packages_and_every_unit_test_runs(workspace):
+    assert shutil.which('catkin_topological_order', path=str(workspace.parent / 'bin')) is None
+    code, output = run_test_command(workspace)
+    assert (code, last_line(output)) == (0, '5 passed, 0 failed'), output
+    assert 'test: pytest src/alpha/test/unit' in output and 'test: pytest src/group/beta/test/unit' in output
+    assert 'command not found' not in output
+    assert (workspace / 'setup_calls.txt').read_text().startswith('setup \n')
+
+
+def test_a_package_whose_unit_folder_has_no_tests_fails_the_run(workspace):
+    add_package(workspace, 'src/gamma', 'gamma', {'helpers.py': 'HELP = 1\n'})
+    code, output = run_test_command(workspace)
+    assert (code, last_line(output)) == (1, '5 passed, 2 failed'), output
+    assert 'FAILED: pytest src/gamma/test/unit collected no tests (exit 5)' in output
+    assert 'FAILED: pytest/gamma.xml: no test results' in output
+
+
+def test_a_unit_test_that_cannot_be_imported_fails_the_run(workspace):
+    add_package(workspace, 'src/gamma', 'gamma', {'test_gamma.py': 'import no_such_module\n'})
+    code, output = run_test_command(workspace, 'gamma')
+    assert code == 1 and 'FAILED' in output, output
+    assert last_line(output) != '0 passed, 0 failed'
+
+
+def test_a_rostest_that_leaves_no_result_file_fails_the_run(workspace):
+    add_package(workspace, 'src/gamma', 'gamma', {'test_gamma.py': PASSING_TESTS},
+                rostests=['test/quiet.test', 'test/good.test'])
+    write(str(workspace / 'tools/fake_bin/rostest'),
+          '#!/bin/bash\ncase "$*" in *quiet.test*) exit 0;; esac\n' + GOOD_ROSTEST, 0o755)
+    code, output = run_test_command(workspace, 'gamma')
+    assert (code, last_line(output)) == (1, '3 passed, 1 failed'), output
+    assert 'FAILED: gamma/rostest-test_quiet.xml: no test results' in output
+    assert 'test: rostest gamma/test/quiet.test' in output and 'test: rostest gamma/test/good.test' in output
+
+
+def test_a_rostest_that_is_killed_fails_the_run_even_with_its_results_written(workspace):
+    add_package(workspace, 'src/gamma', 'gamma', {'test_gamma.py': PASSING_TESTS}, rostests=['test/x.test'])
+    write(str(workspace / 'tools/fake_bin/rostest'), GOOD_ROSTEST + 'kill -9 $$\n', 0o755)
+    code, output = run_test_command(workspace, 'gamma')
+    assert (code, last_line(output)) == (1, '3 passed, 1 failed'), output
+    assert 'FAILED: rostest gamma/test/x.test (exit -9: its results cannot be trusted' in output
+
+
+def test_a_workspace_without_packages_is_a_failure_not_an_empty_pass(workspace):
+    shutil.rmtree(str(workspace / 'src'))
+    (workspace / 'src').mkdir()
+    code, output = run_test_command(workspace)
+    assert code == 1 and 'found no package' in output, output
+    assert 'passed' not in output
+
+
+def test_an_unknown_package_is_refused_with_the_list_of_packages(workspace):
+    code, output = run_test_command(workspace, 'turtlesimm')
+    assert code == 2 and 'no package named turtlesimm here; the packages are: alpha beta' in output
+
+
+def test_a_package_in_a_catkin_ignored_folder_is_not_a_package(workspace):
+    add_package(workspace, 'src/old', 'old', {'helpers.py': 'HELP = 1\n'})
+    write(str(workspace / 'src/old/CATKIN_IGNORE'), '')
+    code, output = run_test_command(workspace)
+    assert (code, last_line(output)) == (0, '5 passed, 0 failed'), output
+
+
+def test_a_job_that_needs_the_machine_alone_runs_with_nothing_beside_it(tmp_path):
+    """run_test_jobs.py: `alone` jobs never overlap another job; the others run two at a time."""
+    spans = tmp_path / 'spans.txt'
+    job = 'echo "%s start $(date +%%s.%%N)" >> {0}; sleep 0.3; echo "%s end $(date +%%s.%%N)" >> {0}'.format(spans)
+    lines = ['%s\t0\t%s\t%s\n' % (name, sharing, job % (name, name))
+             for name, sharing in [('a', 'shared'), ('b', 'shared'), ('rates', 'alone'), ('c', 'shared')]]
+    result = subprocess.run(
+        ['/usr/bin/python3', os.path.join(ROOT, 'tools', 'run_test_jobs.py'), '--jobs', '2',
+         '--logs', str(tmp_path / 'logs'), '--times', str(tmp_path / 'times.txt'),
+         '--failed-steps', str(tmp_path / 'failed.txt')],
+        input=''.join(lines), stdout=subprocess.PIPE, universal_newlines=True, timeout=60)
+    assert result.returncode == 0 and result.stdout.count('\n') == 4, result.stdout
+    events = {}
+    for line in spans.read_text().splitlines():
+        name, what, at = line.split()
+        events[name, what] = float(at)
+    alone = (events['rates', 'start'], events['rates', 'end'])
+    for name in 'abc':
+        assert events[name, 'end'] <= alone[0] or events[name, 'start'] >= alone[1], events
+    overlapping = [events[x, 'start'] < events[y, 'end'] and events[y, 'start'] < events[x, 'end']
+                   for x, y in [('a', 'b'), ('a', 'c'), ('b', 'c')]]
+    assert any(overlapping), events  # the shared ones do run side by side
+    assert (tmp_path / 'failed.txt').read_text() == ''
