@@ -75,7 +75,7 @@ done
 
 # The workspace's own tests (tests/), when no package is named: the quick ones here, the slow ones
 # (minutes each) among the slow steps below.
-SLOW_WORKSPACE_TESTS=(network test_tour.py)
+SLOW_WORKSPACE_TESTS=(network student test_tour.py)
 if [ $# -eq 0 ] && [ -d "$ROOT/tests" ]; then
     args=()
     for part in "${SLOW_WORKSPACE_TESTS[@]}"; do args+=(--ignore="$ROOT/tests/$part"); done
