@@ -134,7 +134,7 @@ _course_docker_base_image() {
 }
 
 course_docker_image() {
-    local suite="${1:-bookworm}" image="ros-course:${1:-bookworm}" proxy
+    local suite="${1:-trixie}" image="ros-course:${1:-trixie}" proxy
     if ! docker image inspect "debian:$suite" >/dev/null 2>&1; then
         _course_docker_base_image "$suite" || return 1
     fi
