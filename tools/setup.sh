@@ -4,37 +4,102 @@
 # Idempotent: with everything installed and nothing changed it only re-runs catkin_make (a few seconds).
 # Usage: tools/setup.sh                  install what is missing, then build
 #        tools/setup.sh --install-only   only install
+#        tools/setup.sh --check          say whether this machine can take the course; installs nothing
+#        tools/setup.sh --packages       print the package list for this machine's Debian suite
 #        tools/setup.sh --make TARGET... catkin_make of those targets (tests, run_tests, ...) in the
 #                                        same build, output to stdout (for test.sh)
 # Environment:
 #   CATKIN_BUILD_BASE   folder that receives build/ and devel/ (default: the repository root)
 #   CATKIN_WHITELIST    ';'-separated packages to build (default: all of them)
 #   COURSE_SKIP_INSTALL=1  do not look at Debian packages at all
+#   COURSE_OS_RELEASE   os-release file that names the system (default /etc/os-release)
+#   COURSE_PACKAGE_LIST package list (default tools/debian-packages.txt)
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"   # Debian's python3 (with rospy) before any pyenv
 
+# The Debian suites whose own archive carries every package of the list (ROS 1 included).
+SUPPORTED_SUITES="trixie bookworm"
+OS_RELEASE="${COURSE_OS_RELEASE:-/etc/os-release}"
+PACKAGE_LIST="${COURSE_PACKAGE_LIST:-$ROOT/tools/debian-packages.txt}"
+REFUSED=3   # exit status when this machine cannot take the course; nothing was installed
+DOCKER_WAY_OUT="use the Docker image instead (tools/docker-test.sh; see docs/docker-and-ci.md)"
+
+# One field of os-release (shell-style KEY=value, value maybe quoted), empty when absent.
+os_release_field() {
+    [ -r "$OS_RELEASE" ] || return 0
+    sed -n "s/^$1=//p" "$OS_RELEASE" | head -n1 | sed -e 's/^"\(.*\)"$/\1/' -e "s/^'\(.*\)'$/\1/"
+}
+
+# Prints the Debian suite of this machine, or says in one sentence why it cannot take the course.
+debian_suite() {
+    local id codename name suite
+    id=$(os_release_field ID)
+    codename=$(os_release_field VERSION_CODENAME)
+    name=$(os_release_field PRETTY_NAME)
+    name="${name:-an unknown system (no $OS_RELEASE)}"
+    for suite in $SUPPORTED_SUITES; do
+        if [ "$id" = debian ] && [ "$codename" = "$suite" ]; then echo "$suite"; return 0; fi
+    done
+    echo "setup: this machine runs $name, but the course installs only on Debian 13 trixie or" \
+         "Debian 12 bookworm (whose own archive carries ROS 1), so nothing was installed: $DOCKER_WAY_OUT." >&2
+    return $REFUSED
+}
+
+# The package list for SUITE: plain lines for every suite, `SUITE: package` lines for that suite only.
+suite_packages() {
+    local suite=$1 line
+    while IFS= read -r line || [ -n "$line" ]; do
+        line="${line%%#*}"
+        line="$(echo "$line" | xargs)"
+        [ -z "$line" ] && continue
+        case "$line" in
+            *:*) [ "${line%%:*}" = "$suite" ] && echo "${line#*:}" | xargs ;;
+            *) echo "$line" ;;
+        esac
+    done < "$PACKAGE_LIST"
+}
+
 missing_packages() {
-    local wanted
-    wanted=$(grep -v -e '^#' -e '^[[:space:]]*$' "$ROOT/tools/debian-packages.txt")
-    for pkg in $wanted; do
+    local pkg
+    for pkg in "$@"; do
         dpkg-query -W -f='${Status}\n' "$pkg" 2>/dev/null | grep -q "install ok installed" || echo "$pkg"
     done
 }
 
+# The packages apt has no candidate for (with apt's lists as they are now).
+unavailable_packages() {
+    local pkg candidate
+    for pkg in "$@"; do
+        candidate=$(apt-cache policy "$pkg" 2>/dev/null | sed -n 's/^ *Candidate: *//p')
+        if [ -z "$candidate" ] || [ "$candidate" = "(none)" ]; then echo "$pkg"; fi
+    done
+}
+
+refuse_unavailable() {
+    echo "setup: this Debian $1 has no package named $(echo $2) in its apt sources, so nothing was" \
+         "installed: enable the suite's main archive in apt, or $DOCKER_WAY_OUT." >&2
+    exit $REFUSED
+}
+
 install_missing() {
-    local missing
-    missing=$(missing_packages)
+    local suite missing unavailable
+    suite=$(debian_suite) || exit $REFUSED
+    missing=$(missing_packages $(suite_packages "$suite"))
     [ -z "$missing" ] && return 0
-    echo "setup: installing Debian packages:" $missing
-    local sudo=""
+    local sudo=()
     if [ "$(id -u)" != 0 ]; then
-        command -v sudo >/dev/null || { echo "setup: these packages are missing and I am not root (no sudo either): $missing" >&2; exit 1; }
-        sudo="sudo"
+        command -v sudo >/dev/null || { echo "setup: these packages are missing and I am not root (no sudo either):" $missing >&2; exit 1; }
+        sudo=(sudo)
     fi
-    $sudo apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends $missing
+    "${sudo[@]}" apt-get update -qq
+    # Every package available before any is installed: never a half-installed machine.
+    unavailable=$(unavailable_packages $missing)
+    [ -z "$unavailable" ] || refuse_unavailable "$suite" "$unavailable"
+    echo "setup: installing Debian $suite packages:" $missing
+    # sudo resets the environment, so the variable goes on its command line.
+    "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $missing
 }
 
 BASE="${CATKIN_BUILD_BASE:-$ROOT}"
@@ -45,11 +110,23 @@ workspace_make() {
         -DCATKIN_WHITELIST_PACKAGES="${CATKIN_WHITELIST:-}" "$@"
 }
 
-if [ "${1:-}" = --make ]; then
-    shift
-    workspace_make "$@"
-    exit
-fi
+case "${1:-}" in
+    --make)
+        shift
+        workspace_make "$@"
+        exit ;;
+    --packages)
+        suite=$(debian_suite) || exit $REFUSED
+        suite_packages "$suite"
+        exit 0 ;;
+    --check)
+        suite=$(debian_suite) || exit $REFUSED
+        packages=$(suite_packages "$suite")
+        unavailable=$(unavailable_packages $(missing_packages $packages))
+        [ -z "$unavailable" ] || refuse_unavailable "$suite" "$unavailable"
+        echo "setup: Debian $suite: every package of the course is installed or available"
+        exit 0 ;;
+esac
 [ "${COURSE_SKIP_INSTALL:-0}" = 1 ] || install_missing
 [ "${1:-}" = --install-only ] && exit 0
 mkdir -p "$BASE"
