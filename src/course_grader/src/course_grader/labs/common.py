@@ -1,0 +1,103 @@
+"""What the labs share: a student's node run with its output kept (bounded), stopped and explained."""
+import collections
+import os
+import signal
+
+from course_grader import feedback
+from course_grader.session import test_helpers
+
+test_helpers('move_turtlebot3')
+import lab_sim  # noqa: E402  (the move_turtlebot3 tests' helpers: Launch, RobotWatch, ...)
+from course_common.processes import stop_process_group  # noqa: E402
+
+MAX_LINES = 5000          # lines of output kept in memory (a node printing without end stays bounded)
+MAX_LOG_BYTES = 5 * 2 ** 20
+
+
+class BoundedLaunch(lab_sim.Launch):
+    """lab_sim.Launch that keeps the last MAX_LINES lines and logs the first MAX_LOG_BYTES."""
+
+    def __init__(self, argv, log_path):
+        self._log = open(log_path, 'w', errors='replace')
+        self._log_bytes = 0
+        super().__init__(*argv)
+
+    def _read(self):
+        with self._lock:
+            self._lines = collections.deque(maxlen=MAX_LINES)
+        for line in self.process.stdout:
+            with self._lock:
+                self._lines.append(line.rstrip('\n'))
+            if self._log_bytes < MAX_LOG_BYTES:
+                self._log.write(line)
+                self._log_bytes += len(line)
+                if self._log_bytes >= MAX_LOG_BYTES:
+                    self._log.write('\n[course_grader: output cut here, %d bytes kept]\n' % MAX_LOG_BYTES)
+        self._log.flush()
+
+    def stop_in(self, seconds):
+        """Ctrl-C; True when the program stopped within `seconds`, False when it had to be killed,
+        None when it had already ended."""
+        if self.process.poll() is not None:
+            self._reader.join(5)
+            self._log.close()
+            return None
+        code = stop_process_group(self.process, seconds)
+        self._reader.join(5)
+        self._log.close()
+        return code != -signal.SIGKILL
+
+
+class StudentNode:
+    """A student's Python script run with Python 3 (as `rosrun` would, but whatever its #! line
+    and execute bit: those are graded on their own), its output logged to <script>.log."""
+
+    def __init__(self, session, script_name, *ros_args):
+        self.session = session
+        self.name = script_name
+        self.path = session.script(script_name)
+        self.known_nodes = lab_sim.node_names()
+        self.launch = None
+        if self.path:
+            self.launch = BoundedLaunch(['/usr/bin/python3', self.path] + list(ros_args),
+                                        session.log_path(os.path.splitext(script_name)[0] + '.log'))
+        self.stopped_cleanly = None
+        self.was_started = False
+
+    @property
+    def output(self):
+        return self.launch.output if self.launch else ''
+
+    @property
+    def lines(self):
+        return self.launch.lines if self.launch else []
+
+    def ended(self):
+        return self.launch is None or self.launch.process.poll() is not None
+
+    def started(self):
+        """A node of the student's registered with the master since the script started."""
+        return bool(lab_sim.node_names() - self.known_nodes - {'/fake_tb3'})
+
+    def stop(self):
+        if self.launch:
+            self.was_started = self.launch.process.poll() is None and self.started()
+            self.stopped_cleanly = self.launch.stop_in(self.session.rubric.limits['stop_seconds'])
+
+    def explain(self):
+        """Hints about this run (missing script, Python 2 prints, crash, never stopped)."""
+        if not self.path:
+            return ['there is no %s in the package %s' % (self.name, self.session.rubric.package)]
+        prints = feedback.python2_prints(self.path, self.session.relative(self.path))
+        return feedback.explain_run(self.session.relative(self.path), self.output,
+                                    self.was_started,
+                                    self.stopped_cleanly, prints)
+
+
+def simulator(session, log_name, picture=None, **args):
+    """fake_tb3's world.launch (the course's TurtleBot3 simulator) with these args."""
+    if picture:
+        args['picture_png'] = session.log_path(picture)
+        session.pictures.append(picture)
+    argv = ['roslaunch', 'fake_tb3', 'world.launch'] + ['%s:=%s' % item for item in sorted(args.items())]
+    return BoundedLaunch(argv, session.log_path(log_name))
