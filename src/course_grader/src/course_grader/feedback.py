@@ -51,7 +51,7 @@ def script_problems(path, display_name=None, python_commands=('python3',)):
         interpreter = os.path.basename(words[-1] if words and words[0].endswith('/env') else
                                        (words[0] if words else ''))
         if interpreter not in python_commands:
-            problems.append('%s line 1: `%s` asks for `%s`, which this course's ROS does not run '
+            problems.append('%s line 1: `%s` asks for `%s`, which this course\'s ROS does not run '
                             '(it runs on Python 3): write `#!/usr/bin/env python3`'
                             % (display_name, first, interpreter or '(nothing)'))
     return problems
@@ -67,9 +67,23 @@ def first_compiler_error(build_log):
                 _short_path(match.group('file')), match.group('line'), match.group('what'))
         match = _CMAKE_ERROR.match(line.strip())
         if match:
-            detail = ' '.join(l.strip() for l in lines[number + 1:number + 4] if l.strip())
-            return 'CMake error in %s line %s: %s' % (_short_path(match.group('file')),
-                                                     match.group('line'), detail[:300])
+            where = (_short_path(match.group('file')), match.group('line'))
+            detail = []
+            for following in lines[number + 1:]:
+                if not following.strip():
+                    if detail:
+                        break
+                    continue
+                detail.append(following.strip())
+            # The student's own line when the error is raised inside a CMake module.
+            if where[0].startswith('/'):
+                for following in lines[number + 1:number + 40]:
+                    called = re.match(r'\s*(\S*CMakeLists\.txt):(\d+) ', following)
+                    if called:
+                        where = (_short_path(called.group(1)), called.group(2))
+                        break
+            text = ' '.join(detail).split(' with any of the following names')[0]
+            return 'CMake error in %s line %s: %s' % (where + (text[:300],))
     return None
 
 

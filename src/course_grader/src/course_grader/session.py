@@ -153,7 +153,7 @@ def grade(rubric, package_dir, out_dir, scratch, student):
     except BuildFailed as error:
         outcomes.update(early)
         outcomes['builds'] = Outcome(False, str(error))
-        return results.score(rubric, outcomes, student, error='not run: the package does not build (%s)' % error,
+        return results.score(rubric, outcomes, student, error='not run: the package does not build',
                              seconds=time.monotonic() - started)
     outcomes['builds'] = Outcome(True, 'catkin_make built it')
     outcomes.update(early)

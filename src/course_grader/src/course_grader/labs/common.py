@@ -2,6 +2,7 @@
 import collections
 import os
 import signal
+import time
 
 from course_grader import feedback
 from course_grader.session import test_helpers
@@ -33,18 +34,17 @@ class BoundedLaunch(lab_sim.Launch):
                 self._log_bytes += len(line)
                 if self._log_bytes >= MAX_LOG_BYTES:
                     self._log.write('\n[course_grader: output cut here, %d bytes kept]\n' % MAX_LOG_BYTES)
-        self._log.flush()
+                self._log.flush()
+        self._log.close()
 
     def stop_in(self, seconds):
         """Ctrl-C; True when the program stopped within `seconds`, False when it had to be killed,
         None when it had already ended."""
         if self.process.poll() is not None:
             self._reader.join(5)
-            self._log.close()
             return None
         code = stop_process_group(self.process, seconds)
         self._reader.join(5)
-        self._log.close()
         return code != -signal.SIGKILL
 
 
@@ -63,6 +63,8 @@ class StudentNode:
                                         session.log_path(os.path.splitext(script_name)[0] + '.log'))
         self.stopped_cleanly = None
         self.was_started = False
+        self.output_before_stop = ''
+        self.start_deadline = time.monotonic() + session.rubric.limits.get('start_seconds', 20)
 
     @property
     def output(self):
@@ -73,15 +75,24 @@ class StudentNode:
         return self.launch.lines if self.launch else []
 
     def ended(self):
-        return self.launch is None or self.launch.process.poll() is not None
+        """Nothing more will come from this node: it exited, it crashed three times (in its
+        callbacks), or it has not started a ROS node within start_seconds."""
+        if self.launch is None or self.launch.process.poll() is not None:
+            return True
+        if sum(1 for line in self.lines if line.startswith('Traceback (most recent call last)')) >= 3:
+            return True
+        return time.monotonic() > self.start_deadline and not self.started()
 
     def started(self):
         """A node of the student's registered with the master since the script started."""
-        return bool(lab_sim.node_names() - self.known_nodes - {'/fake_tb3'})
+        if not self.was_started:
+            self.was_started = bool(lab_sim.node_names() - self.known_nodes - {'/fake_tb3'})
+        return self.was_started
 
     def stop(self):
         if self.launch:
-            self.was_started = self.launch.process.poll() is None and self.started()
+            self.started()
+            self.output_before_stop = self.output   # what came after Ctrl-C is not the student's doing
             self.stopped_cleanly = self.launch.stop_in(self.session.rubric.limits['stop_seconds'])
 
     def explain(self):
@@ -89,8 +100,9 @@ class StudentNode:
         if not self.path:
             return ['there is no %s in the package %s' % (self.name, self.session.rubric.package)]
         prints = feedback.python2_prints(self.path, self.session.relative(self.path))
-        return feedback.explain_run(self.session.relative(self.path), self.output,
-                                    self.was_started,
+        # Paths of the scratch workspace, as the student knows them: move_turtlebot3/scripts/...
+        output = self.output_before_stop.replace(os.path.dirname(self.session.package_dir) + os.sep, '')
+        return feedback.explain_run(self.session.relative(self.path), output, self.was_started,
                                     self.stopped_cleanly, prints)
 
 
