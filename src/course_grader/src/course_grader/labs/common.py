@@ -5,6 +5,7 @@ import signal
 import time
 
 from course_grader import feedback
+from course_grader.results import Outcome
 from course_grader.session import test_helpers
 
 test_helpers('move_turtlebot3')
@@ -86,7 +87,10 @@ class StudentNode:
     def started(self):
         """A node of the student's registered with the master since the script started."""
         if not self.was_started:
-            self.was_started = bool(lab_sim.node_names() - self.known_nodes - {'/fake_tb3'})
+            try:
+                self.was_started = bool(lab_sim.node_names() - self.known_nodes - {'/fake_tb3'})
+            except OSError:   # the master does not answer (a submission took all processes)
+                return False
         return self.was_started
 
     def stop(self):
@@ -113,3 +117,24 @@ def simulator(session, log_name, picture=None, **args):
         session.pictures.append(picture)
     argv = ['roslaunch', 'fake_tb3', 'world.launch'] + ['%s:=%s' % item for item in sorted(args.items())]
     return BoundedLaunch(argv, session.log_path(log_name))
+
+
+def run_each(session, checks):
+    """Run each (check, script, criterion ids): a run that breaks down (a submission that took every
+    process or all memory of its sandbox, say) costs its own criteria only, with the reason."""
+    outcomes = {}
+    for check, script, criterion_ids in checks:
+        try:
+            outcomes.update(check(session))
+        except Exception as error:   # noqa: B902 (whatever broke, the next checks still run)
+            log = session.log_path(os.path.splitext(script)[0] + '.log')
+            try:
+                with open(log, errors='replace') as stream:
+                    tail = [line.rstrip() for line in stream.read()[-3000:].splitlines()[-3:]]
+            except OSError:
+                tail = []
+            reason = ('the run of %s broke down (%s: %s); the last lines %s printed: %s' % (
+                script, type(error).__name__, str(error)[:200] or '-', script, ' | '.join(tail) or 'none'))
+            for criterion_id in criterion_ids:
+                outcomes[criterion_id] = Outcome(False, reason)
+    return outcomes

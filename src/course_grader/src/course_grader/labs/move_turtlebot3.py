@@ -3,7 +3,7 @@ the checks of move_turtlebot3's own tests (lab_sim, test_trajectory, test_laser_
 import math
 
 from course_grader import feedback
-from course_grader.labs.common import StudentNode, lab_sim, simulator
+from course_grader.labs.common import StudentNode, lab_sim, run_each, simulator
 from course_grader.results import Outcome
 from course_grader.session import Deadline
 from course_common.testing import wait_until
@@ -249,8 +249,10 @@ def check_avoid_obstacle(session):
         run.stop()
 
 
+CHECKS = [(check_trajectory, 'trajectory.py', ['trajectory_rate', 'trajectory_circle']),
+          (check_laser_data, 'laser_data.py', ['laser_data']),
+          (check_avoid_obstacle, 'avoid_obstacle.py', ['avoid_stops', 'avoid_stays'])]
+
+
 def run_checks(session):
-    outcomes = {}
-    for check in (check_trajectory, check_laser_data, check_avoid_obstacle):
-        outcomes.update(check(session))
-    return outcomes
+    return run_each(session, CHECKS)
