@@ -63,8 +63,14 @@ def first_compiler_error(build_log):
     for number, line in enumerate(lines):
         match = _COMPILER_ERROR.match(line.strip())
         if match:
-            return 'first compiler error: %s line %s: %s' % (
+            sentence = 'first compiler error: %s line %s: %s' % (
                 _short_path(match.group('file')), match.group('line'), match.group('what'))
+            header = re.match(r'(\w+)/\w+\.h: No such file or directory', match.group('what'))
+            if header:
+                sentence += ('. The header comes from the package %s: add %s to find_package(catkin REQUIRED '
+                             'COMPONENTS ...) in CMakeLists.txt and a <depend>%s</depend> to package.xml'
+                             % ((header.group(1),) * 3))
+            return sentence
         match = _CMAKE_ERROR.match(line.strip())
         if match:
             where = (_short_path(match.group('file')), match.group('line'))

@@ -179,6 +179,7 @@ def main(argv=None):
     rubric = rubrics.load(args.rubric or args.lab)
     os.environ.setdefault('ROS_HOME', os.path.join(args.scratch, 'ros_home'))
     os.environ['PYTHONDONTWRITEBYTECODE'] = '1'
+    os.environ['ROSCONSOLE_STDOUT_LINE_BUFFERED'] = '1'   # C++ nodes' lines as they print them
     result = grade(rubric, args.package, args.out, args.scratch, args.student)
     results.write(result, args.out)
     return 0

@@ -54,6 +54,11 @@ def test_first_compiler_error_of_gcc_and_of_cmake():
                                                     'Could not find a package configuration file provided by '
                                                     '"geometry_msg"')
     assert feedback.first_compiler_error('[100%] Built target x\n') is None
+    missing = '/tmp/ws/src/my_turtle/src/n.cpp:3:10: fatal error: turtlesim/Pose.h: No such file or directory\n'
+    assert feedback.first_compiler_error(missing) == (
+        'first compiler error: my_turtle/src/n.cpp line 3: turtlesim/Pose.h: No such file or directory. The '
+        'header comes from the package turtlesim: add turtlesim to find_package(catkin REQUIRED COMPONENTS ...) '
+        'in CMakeLists.txt and a <depend>turtlesim</depend> to package.xml')
 
 
 CRASH = '''[INFO] started
