@@ -180,7 +180,8 @@ class Grader:
         if self.args.rubric:
             rubric_mount = ['-v', '%s:/rubric.yaml:ro' % os.path.abspath(self.args.rubric)]
             rubric = '/rubric.yaml'
-        command = ['docker', 'run', '--name', name, '--network', 'none', '--user', 'student',
+        # --init: a reaper as PID 1, so that what the submission forks and leaves behind is reaped.
+        command = ['docker', 'run', '--name', name, '--init', '--network', 'none', '--user', 'student',
                    '--read-only', '--security-opt', 'no-new-privileges', '--cap-drop', 'ALL',
                    '-e', 'ROS_HOME=/tmp/ros', '-e', 'HOME=/tmp/home',
                    '-v', '%s:/submission:ro' % submission, '-v', '%s:/out' % staging] + rubric_mount \
