@@ -5,6 +5,7 @@ import os
 import pwd
 import resource
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -14,6 +15,7 @@ import uuid
 from concurrent.futures import ThreadPoolExecutor
 
 from course_grader import reports, results, rubric as rubrics
+from course_grader.session import PROCESS_GROUPS
 from course_grader.submission import SubmissionError, find_package, student_name, unpack
 
 MARKER = '.course_grader'            # in --out: the folder is the grader's (it may empty it)
@@ -83,7 +85,7 @@ def copy_output(staging, folder):
     copied = 0
     for name in sorted(os.listdir(staging)):
         path = os.path.join(staging, name)
-        if os.path.islink(path) or not os.path.isfile(path):
+        if name == PROCESS_GROUPS or os.path.islink(path) or not os.path.isfile(path):
             continue
         size = os.path.getsize(path)
         if copied + size > MAX_COPIED_BYTES:
@@ -98,6 +100,21 @@ def _tail(path, lines=15):
             return '\n'.join(stream.read()[-20000:].splitlines()[-lines:])
     except OSError:
         return ''
+
+
+def kill_process_groups(listing):
+    try:
+        with open(listing) as stream:
+            groups = {int(line) for line in stream if line.strip().isdigit()}
+        os.remove(listing)
+    except (OSError, ValueError):
+        return
+    for group in groups:
+        if group > 1 and group != os.getpgid(0):
+            try:
+                os.killpg(group, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError):
+                pass
 
 
 def _limit_resources():
@@ -224,8 +241,9 @@ class Grader:
                 code = None
             finally:
                 stop_process_group(process, 10)
-                # What the session started in its own sessions (roscore, nodes) it stops itself;
-                # a student's process that left the group is out of reach here: say so in the docs.
+                # The session started roscore, the simulators and the student's nodes in process
+                # groups of their own, and stops them; if it could not, they go now.
+                kill_process_groups(os.path.join(staging, PROCESS_GROUPS))
         return self._reason(code, log)
 
     def _reason(self, code, log):

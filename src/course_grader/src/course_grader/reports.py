@@ -75,6 +75,7 @@ td.pass { color: #161; } td.fail { color: #a11; }
 pre { background: #f6f6f6; padding: 0.5em; max-height: 20em; overflow: auto; font-size: 85%; }
 .pictures img { max-width: 22em; border: 1px solid #ccc; margin: 0.3em; }
 .error { color: #a11; font-weight: bold; }
+td.why { white-space: pre-wrap; }
 '''
 
 
@@ -106,10 +107,10 @@ def html_report(results, rubric, out_dir, seconds=None, log_lines=25):
             parts.append('<p class="error">%s</p>' % esc(result['error']))
         parts.append('<table><tr><th>criterion</th><th>points</th><th>why</th></tr>')
         for c in result['criteria']:
-            why = _failure_text(c) if not c['passed'] else (c['reason'] or 'ok')
-            parts.append('<tr><td>%s</td><td class="%s num">%s / %s</td><td>%s</td></tr>' % (
+            why = _failure_text(c) or 'ok'   # hints too when it passed (a node that ignores Ctrl-C)
+            parts.append('<tr><td>%s</td><td class="%s num">%s / %s</td><td class="why">%s</td></tr>' % (
                 esc(c['title']), 'pass' if c['passed'] else 'fail', _points(c['points']),
-                _points(c['max_points']), esc(why).replace('\n', '<br>')))
+                _points(c['max_points']), esc(why)))
         parts.append('</table>')
         pictures = [p for p in result.get('pictures', []) if os.path.isfile(os.path.join(folder, p))]
         if pictures:

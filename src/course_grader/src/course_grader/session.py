@@ -27,6 +27,16 @@ def test_helpers(package):
     return folder
 
 
+PROCESS_GROUPS = 'process_groups.txt'   # in the output folder: every group the session started
+
+
+def note_process_group(out_dir, process):
+    """Remember a process group started in a session of its own, so that the host can kill what is
+    left of it when it runs the session without a container (where nothing else would)."""
+    with open(os.path.join(out_dir, PROCESS_GROUPS), 'a') as stream:
+        stream.write('%d\n' % process.pid)
+
+
 class Deadline:
     def __init__(self, seconds):
         self.end = time.monotonic() + seconds
@@ -64,6 +74,7 @@ def run_logged(argv, log_path, timeout, cwd=None, env=None):
     with open(log_path, 'wb') as log:
         process = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, cwd=cwd,
                                    env=env, start_new_session=True)
+        note_process_group(os.path.dirname(log_path), process)
         deadline = time.monotonic() + timeout
         written = 0
         import selectors
@@ -120,6 +131,7 @@ class Master:
         self.log = open(log_path, 'wb')
         self.process = subprocess.Popen(['roscore', '-p', str(self.port)], stdout=self.log,
                                         stderr=subprocess.STDOUT, start_new_session=True)
+        note_process_group(os.path.dirname(log_path), self.process)
         deadline = time.monotonic() + 60
         master = rosgraph.Master('/course_grader')
         while True:

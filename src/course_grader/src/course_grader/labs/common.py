@@ -6,7 +6,7 @@ import time
 
 from course_grader import feedback
 from course_grader.results import Outcome
-from course_grader.session import test_helpers
+from course_grader.session import note_process_group, test_helpers
 
 test_helpers('move_turtlebot3')
 import lab_sim  # noqa: E402  (the move_turtlebot3 tests' helpers: Launch, RobotWatch, ...)
@@ -23,6 +23,7 @@ class BoundedLaunch(lab_sim.Launch):
         self._log = open(log_path, 'w', errors='replace')
         self._log_bytes = 0
         super().__init__(*argv)
+        note_process_group(os.path.dirname(log_path), self.process)
 
     def _read(self):
         with self._lock:
