@@ -22,7 +22,7 @@ number = 0
 while True:
     try:
         with open('/tmp/fill%d' % number, 'wb') as stream:
-            for _ in range(1024):
+            for _ in range(64):       # files of 64 MB, many of them
                 stream.write(b'x' * 2 ** 20)
         number += 1
     except OSError as error:
