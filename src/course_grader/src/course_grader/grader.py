@@ -156,6 +156,7 @@ class Grader:
         finally:
             shutil.rmtree(scratch, ignore_errors=True)
         result['seconds'] = time.monotonic() - started
+        results.write(result, folder)   # the grade as the reports have it (checked against the rubric)
         with self.lock:
             self.done += 1
             print('grade: [%d/%d] %s: %g / %g (%.0f s)%s' % (

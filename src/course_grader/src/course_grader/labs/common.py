@@ -1,5 +1,6 @@
 """What the labs share: a student's node run with its output kept (bounded), stopped and explained."""
 import collections
+import errno
 import os
 import signal
 import time
@@ -58,7 +59,7 @@ class StudentNode:
         self.session = session
         self.name = script_name
         self.path = session.script(script_name)
-        self.known_nodes = lab_sim.node_names()
+        self.known_nodes = node_names()
         self.launch = None
         if self.path:
             self.launch = BoundedLaunch(['/usr/bin/python3', self.path] + list(ros_args),
@@ -88,10 +89,7 @@ class StudentNode:
     def started(self):
         """A node of the student's registered with the master since the script started."""
         if not self.was_started:
-            try:
-                self.was_started = bool(lab_sim.node_names() - self.known_nodes - {'/fake_tb3'})
-            except OSError:   # the master does not answer (a submission took all processes)
-                return False
+            self.was_started = bool(node_names() - self.known_nodes - {'/fake_tb3'})
         return self.was_started
 
     def stop(self):
@@ -120,6 +118,14 @@ def simulator(session, log_name, picture=None, **args):
     return BoundedLaunch(argv, session.log_path(log_name))
 
 
+def node_names():
+    """The nodes the master knows; none while it does not answer (a submission took every process)."""
+    try:
+        return lab_sim.node_names()
+    except OSError:
+        return set()
+
+
 def run_each(session, checks):
     """Run each (check, script, criterion ids): a run that breaks down (a submission that took every
     process or all memory of its sandbox, say) costs its own criteria only, with the reason."""
@@ -136,6 +142,9 @@ def run_each(session, checks):
                 tail = []
             reason = ('the run of %s broke down (%s: %s); the last lines %s printed: %s' % (
                 script, type(error).__name__, str(error)[:200] or '-', script, ' | '.join(tail) or 'none'))
+            if "can't start new thread" in str(error) or getattr(error, 'errno', None) == errno.EAGAIN:
+                reason += ('. The sandbox ran out of processes: does the submission start processes '
+                           'without end (a fork bomb)?')
             for criterion_id in criterion_ids:
                 outcomes[criterion_id] = Outcome(False, reason)
     return outcomes

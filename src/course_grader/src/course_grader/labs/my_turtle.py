@@ -7,7 +7,7 @@ import time
 import rospy
 from geometry_msgs.msg import Twist
 
-from course_grader.labs.common import BoundedLaunch, lab_sim, run_each
+from course_grader.labs.common import BoundedLaunch, node_names, run_each
 from course_grader.results import Outcome
 from course_grader.session import Deadline, test_helpers
 from course_common.testing import wait_until
@@ -32,16 +32,16 @@ def check_turtle(session):
     picture = session.log_path('turtle.png')
     rospy.set_param('/turtlesim_node/canvas_png', picture)
     session.pictures.append('turtle.png')
-    known = lab_sim.node_names()
+    known = node_names()
     launch_file = launch_c.get('launch_file', 'move_turtle.launch')
     runs = [BoundedLaunch(['roslaunch', rubric.package, launch_file], session.log_path('move_turtle.log'))]
     outcomes = {}
     try:
         def started():
-            return {'/turtlesim_node', '/my_turtle_node'} <= lab_sim.node_names() - known
+            return {'/turtlesim_node', '/my_turtle_node'} <= node_names() - known
         launched = _wait(lambda: started() or runs[0].process.poll() is not None,
                          rubric.limits['start_seconds']) and started()
-        seen = sorted(lab_sim.node_names() - known)
+        seen = sorted(node_names() - known)
         if launched:
             outcomes['launch'] = Outcome(True, 'started %s' % ', '.join(seen))
         else:
@@ -52,12 +52,12 @@ def check_turtle(session):
                                              ('; ' + ' | '.join(tail)) if tail else ''))
             # The other criteria still get their chance: turtlesim and the node, started by hand.
             runs[0].stop_in(rubric.limits['stop_seconds'])
-            if '/turtlesim_node' not in lab_sim.node_names():
+            if '/turtlesim_node' not in node_names():
                 runs.append(BoundedLaunch(['rosrun', 'turtlesim', 'turtlesim_node', '__name:=turtlesim_node'],
                                           session.log_path('turtlesim.txt')))
             runs.append(BoundedLaunch(['rosrun', rubric.package, launch_c.get('executable', 'my_turtle_node'),
                                        '__name:=my_turtle_node'], session.log_path('my_turtle_node.log')))
-            if not _wait(lambda: '/my_turtle_node' in lab_sim.node_names(), rubric.limits['start_seconds']):
+            if not _wait(lambda: '/my_turtle_node' in node_names(), rubric.limits['start_seconds']):
                 reason = 'not checked: the node %s did not start' % launch_c.get('executable', 'my_turtle_node')
                 return dict(outcomes, teleop=Outcome(False, reason), prints_pose=Outcome(False, reason))
         watch = turtle_watch.PoseWatch()
