@@ -7,7 +7,8 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 "$ROOT/tools/setup.sh"
 # shellcheck disable=SC1091
 source "$ROOT/tools/env.sh"
-if [[ " $* " != *" --no-container "* && " $* " != *" --help "* && " $* " != *" -h "* && -z "${COURSE_GRADER_IMAGE:-}" ]]; then
+# The image only when it will be used: a class to grade in containers (not --help, not a usage error).
+if [[ $# -ge 2 && " $* " != *" --no-container "* && " $* " != *" --help "* && " $* " != *" -h "* && -z "${COURSE_GRADER_IMAGE:-}" ]]; then
     # shellcheck source=tools/docker.sh
     source "$ROOT/tools/docker.sh"
     course_docker_engine || { echo "grade: no Docker engine; grade with --no-container only code you trust" >&2; exit 2; }
