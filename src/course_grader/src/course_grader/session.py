@@ -167,6 +167,7 @@ def grade(rubric, package_dir, out_dir, scratch, student):
         outcomes['builds'] = Outcome(False, str(error))
         return results.score(rubric, outcomes, student, error='not run: the package does not build',
                              seconds=time.monotonic() - started)
+    print('grade_submission: built in %.1f s' % (time.monotonic() - started), flush=True)
     outcomes['builds'] = Outcome(True, 'catkin_make built it')
     outcomes.update(early)
     os.environ.update(overlay_env)

@@ -131,8 +131,10 @@ def run_each(session, checks):
     process or all memory of its sandbox, say) costs its own criteria only, with the reason."""
     outcomes = {}
     for check, script, criterion_ids in checks:
+        started = time.monotonic()
         try:
             outcomes.update(check(session))
+            print('grade_submission: %s checked in %.1f s' % (script, time.monotonic() - started), flush=True)
         except Exception as error:   # noqa: B902 (whatever broke, the next checks still run)
             log = session.log_path(os.path.splitext(script)[0] + '.log')
             try:
