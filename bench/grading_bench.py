@@ -20,6 +20,13 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODEL = os.path.join(ROOT, 'src', 'move_turtlebot3')
 SCRIPTS = ('trajectory.py', 'laser_data.py', 'avoid_obstacle.py')
+CMAKELISTS = """cmake_minimum_required(VERSION 3.0.2)
+project(move_turtlebot3)
+find_package(catkin REQUIRED)
+catkin_package()
+catkin_install_python(PROGRAMS scripts/trajectory.py scripts/laser_data.py scripts/avoid_obstacle.py
+  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+"""
 
 
 def variant(number):
@@ -53,8 +60,9 @@ def generate(folder, count):
         name, texts, executable = variant(number)
         package = os.path.join(folder, name, 'move_turtlebot3')
         os.makedirs(os.path.join(package, 'scripts'))
-        for meta in ('package.xml', 'CMakeLists.txt'):
-            shutil.copy(os.path.join(MODEL, meta), package)
+        shutil.copy(os.path.join(MODEL, 'package.xml'), package)
+        with open(os.path.join(package, 'CMakeLists.txt'), 'w') as stream:   # the three scripts only
+            stream.write(CMAKELISTS)
         for script, text in texts.items():
             path = os.path.join(package, 'scripts', script)
             with open(path, 'w') as stream:
@@ -98,6 +106,9 @@ def main():
         for mode in args.modes.split(','):
             seconds, scores = grade(paths, os.path.join(folder, mode), args.jobs, mode == 'container')
             all_scores.append(scores)
+            wrong = sorted(name for name, score in scores.items() if name.endswith('_correct') and score != 14)
+            if wrong:   # a bench of a grader that fails correct code measures nothing
+                raise SystemExit('%s: correct submissions did not get 14: %s' % (mode, ', '.join(wrong)))
             rows.append((mode, args.students, args.jobs, '%.0f' % seconds, '%.1f' % (seconds / args.students),
                          '%.0f' % (sum(scores.values()) / len(scores) * 100 / 14)))
         print('\n### Grading a class of %d generated move_turtlebot3 submissions (%d cores)\n'
