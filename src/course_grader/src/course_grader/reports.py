@@ -1,0 +1,139 @@
+"""The class's report: grades.csv (one row per student), junit/<student>.xml (one testcase per
+criterion), report.html (a section per student: rubric, reasons, pictures, log tails)."""
+import base64
+import csv
+import html
+import os
+import xml.etree.ElementTree as ET
+
+
+def _points(value):
+    return ('%g' % value) if isinstance(value, (int, float)) else str(value)
+
+
+def write_csv(results, rubric, path):
+    with open(path, 'w', newline='') as stream:
+        writer = csv.writer(stream)
+        writer.writerow(['student', 'lab', 'score', 'max_score'] + [c.id for c in rubric.criteria])
+        for result in sorted(results, key=lambda r: r['student']):
+            points = {c['id']: c['points'] for c in result['criteria']}
+            writer.writerow([result['student'], result['lab'], _points(result['score']),
+                             _points(result['max_score'])]
+                            + [_points(points.get(c.id, 0)) for c in rubric.criteria])
+
+
+def _failure_text(criterion):
+    return '\n'.join([criterion['reason']] + criterion['hints']).strip()
+
+
+def junit_xml(result):
+    """JUnit XML of a student's result: a testsuite named after the student, a testcase per
+    criterion, failed with the reason (what CI servers and GitHub Classroom read)."""
+    failures = sum(1 for c in result['criteria'] if not c['passed'])
+    suite = ET.Element('testsuite', name='%s.%s' % (result['lab'], result['student']),
+                       tests=str(len(result['criteria'])), failures=str(failures), errors='0',
+                       time='%.1f' % (result.get('seconds') or 0))
+    for criterion in result['criteria']:
+        case = ET.SubElement(suite, 'testcase', classname='%s.%s' % (result['lab'], result['student']),
+                             name=criterion['id'])
+        ET.SubElement(case, 'properties')
+        properties = case.find('properties')
+        for name, value in (('points', criterion['points']), ('max_points', criterion['max_points']),
+                            ('title', criterion['title'])):
+            ET.SubElement(properties, 'property', name=name, value=_points(value))
+        if not criterion['passed']:
+            text = _failure_text(criterion)
+            failure = ET.SubElement(case, 'failure', message=text.splitlines()[0] if text else 'failed')
+            failure.text = text
+    return ET.tostring(suite, encoding='unicode')
+
+
+def write_junit(result, folder):
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, result['student'] + '.xml'), 'w') as stream:
+        stream.write('<?xml version="1.0" encoding="UTF-8"?>\n' + junit_xml(result) + '\n')
+
+
+def _tail(path, lines):
+    try:
+        with open(path, errors='replace') as stream:
+            stream.seek(0, os.SEEK_END)
+            size = stream.tell()
+            stream.seek(max(0, size - 200000))
+            return '\n'.join(stream.read().splitlines()[-lines:])
+    except OSError:
+        return None
+
+
+CSS = '''
+body { font-family: sans-serif; margin: 2em; color: #222; max-width: 70em; }
+table { border-collapse: collapse; margin: 0.5em 0; }
+th, td { border: 1px solid #bbb; padding: 0.25em 0.6em; text-align: left; vertical-align: top; }
+th { background: #eee; }
+td.pass { color: #161; } td.fail { color: #a11; }
+.summary td.num, td.num { text-align: right; }
+pre { background: #f6f6f6; padding: 0.5em; max-height: 20em; overflow: auto; font-size: 85%; }
+.pictures img { max-width: 22em; border: 1px solid #ccc; margin: 0.3em; }
+.error { color: #a11; font-weight: bold; }
+td.why { white-space: pre-wrap; }
+'''
+
+
+def html_report(results, rubric, out_dir, seconds=None, log_lines=25):
+    """The HTML page of a graded class (pictures embedded, so the file can be mailed alone)."""
+    esc = html.escape
+    results = sorted(results, key=lambda r: r['student'])
+    parts = ['<!DOCTYPE html><html><head><meta charset="utf-8"><title>%s: grades</title><style>%s</style>'
+             '</head><body>' % (esc(rubric.lab), CSS),
+             '<h1>%s</h1><p>Lab <code>%s</code>, %d students, out of %s points%s. Rubric: <code>%s</code>.</p>'
+             % (esc(rubric.title), esc(rubric.lab), len(results), _points(rubric.max_score),
+                ', graded in %.0f s' % seconds if seconds is not None else '',
+                esc(os.path.basename(rubric.path)))]
+    parts.append('<table class="summary"><tr><th>student</th><th>score</th>%s</tr>' % ''.join(
+        '<th title="%s">%s</th>' % (esc(c.title), esc(c.id)) for c in rubric.criteria))
+    for result in results:
+        cells = ''.join('<td class="%s num">%s</td>' % ('pass' if c['passed'] else 'fail', _points(c['points']))
+                        for c in result['criteria'])
+        parts.append('<tr><td><a href="#%s">%s</a></td><td class="num">%s / %s</td>%s</tr>' % (
+            esc(result['student']), esc(result['student']), _points(result['score']),
+            _points(result['max_score']), cells))
+    parts.append('</table>')
+    for result in results:
+        student = result['student']
+        folder = os.path.join(out_dir, student)
+        parts.append('<h2 id="%s">%s: %s / %s</h2>' % (esc(student), esc(student), _points(result['score']),
+                                                       _points(result['max_score'])))
+        if result.get('error'):
+            parts.append('<p class="error">%s</p>' % esc(result['error']))
+        parts.append('<table><tr><th>criterion</th><th>points</th><th>why</th></tr>')
+        for c in result['criteria']:
+            why = _failure_text(c) or 'ok'   # hints too when it passed (a node that ignores Ctrl-C)
+            parts.append('<tr><td>%s</td><td class="%s num">%s / %s</td><td class="why">%s</td></tr>' % (
+                esc(c['title']), 'pass' if c['passed'] else 'fail', _points(c['points']),
+                _points(c['max_points']), esc(why)))
+        parts.append('</table>')
+        pictures = [p for p in result.get('pictures', []) if os.path.isfile(os.path.join(folder, p))]
+        if pictures:
+            parts.append('<div class="pictures">')
+            for picture in pictures:
+                with open(os.path.join(folder, picture), 'rb') as stream:
+                    data = base64.b64encode(stream.read()).decode('ascii')
+                parts.append('<figure style="display:inline-block"><img alt="%s" src="data:image/png;base64,%s">'
+                             '<figcaption>%s</figcaption></figure>' % (esc(picture), data, esc(picture)))
+            parts.append('</div>')
+        for log in sorted(n for n in os.listdir(folder) if n.endswith('.log')) if os.path.isdir(folder) else []:
+            tail = _tail(os.path.join(folder, log), log_lines)
+            if tail:
+                parts.append('<details><summary>%s (last %d lines; whole log in %s/%s)</summary><pre>%s</pre>'
+                             '</details>' % (esc(log), log_lines, esc(student), esc(log), esc(tail)))
+    parts.append('</body></html>')
+    return '\n'.join(parts)
+
+
+def write_all(results, rubric, out_dir, seconds=None):
+    """grades.csv, junit/ and report.html of a class into out_dir (replacing earlier ones)."""
+    write_csv(results, rubric, os.path.join(out_dir, 'grades.csv'))
+    for result in results:
+        write_junit(result, os.path.join(out_dir, 'junit'))
+    with open(os.path.join(out_dir, 'report.html'), 'w') as stream:
+        stream.write(html_report(results, rubric, out_dir, seconds))

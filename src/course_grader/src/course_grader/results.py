@@ -1,0 +1,60 @@
+"""A student's result: one outcome per rubric criterion, the score, and what the sandbox left."""
+import json
+import os
+
+RESULT_FILE = 'result.json'
+
+
+class Outcome:
+    """What one criterion gave: passed or not, the sentence that says why (expected and seen), and
+    the sentences about usual mistakes (hints)."""
+
+    def __init__(self, passed, reason='', hints=()):
+        self.passed = bool(passed)
+        self.reason = reason
+        self.hints = list(hints)
+
+
+def score(rubric, outcomes, student, error=None, pictures=(), seconds=None):
+    """The result (a dict, as written to result.json) of a student for a rubric. Criteria without
+    an outcome (the run stopped before them) get 0 points with `error` as their reason."""
+    criteria = []
+    for criterion in rubric.criteria:
+        outcome = outcomes.get(criterion.id) or Outcome(False, error or 'not checked')
+        criteria.append({
+            'id': criterion.id, 'title': criterion.title, 'max_points': criterion.points,
+            'points': criterion.points if outcome.passed else 0, 'passed': outcome.passed,
+            'reason': '' if outcome.passed and not outcome.reason else outcome.reason,
+            'hints': outcome.hints})
+    return {'student': student, 'lab': rubric.lab, 'score': sum(c['points'] for c in criteria),
+            'max_score': rubric.max_score, 'error': error, 'criteria': criteria,
+            'pictures': list(pictures), 'seconds': seconds}
+
+
+def failed(rubric, student, reason, seconds=None):
+    """The result of a submission that could not be graded at all (not built, refused, timed out)."""
+    return score(rubric, {}, student, error=reason, seconds=seconds)
+
+
+def write(result, folder):
+    with open(os.path.join(folder, RESULT_FILE), 'w') as stream:
+        json.dump(result, stream, indent=1, sort_keys=True)
+
+
+def read(rubric, student, folder):
+    """A result.json the sandbox wrote, checked against the rubric (the sandbox is the student's:
+    never trust its numbers beyond what the rubric allows)."""
+    path = os.path.join(folder, RESULT_FILE)
+    try:
+        with open(path) as stream:
+            data = json.load(stream)
+        by_id = {c['id']: c for c in data['criteria']}
+        outcomes = {cid: Outcome(c['passed'] is True, str(c.get('reason', ''))[:4000],
+                                 [str(h)[:4000] for h in c.get('hints', [])][:20])
+                    for cid, c in by_id.items() if cid in {c.id for c in rubric.criteria}}
+        pictures = [p for p in data.get('pictures', []) if isinstance(p, str)
+                    and os.path.basename(p) == p and p.endswith('.png')]
+        error = data.get('error')
+        return score(rubric, outcomes, student, error=str(error) if error else None, pictures=pictures)
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return None

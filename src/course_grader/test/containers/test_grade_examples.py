@@ -1,0 +1,101 @@
+"""The example classes graded by ./grade.sh in containers, as a teacher runs it: every example's score
+and sentence (examples/grading/<lab>/expected.yaml), the hostile one included, archives, and a
+second grading into the same folder. Run by tools/grade-test.sh (CI, after the Docker test): not
+part of ./test.sh, which never runs the hostile examples."""
+import io
+import os
+import subprocess
+import sys
+import tarfile
+import zipfile
+
+import pytest
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from example_class import EXAMPLES, ROOT, expected, labs, mismatches, read_results  # noqa: E402
+
+
+def grade(lab, submissions, out, *options):
+    result = subprocess.run([os.path.join(ROOT, 'grade.sh'), lab] + submissions + ['--out', out] + list(options),
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                            stdin=subprocess.DEVNULL)
+    print(result.stdout)
+    return result
+
+
+@pytest.fixture(scope='module')
+def archives(tmp_path_factory):
+    """The model answer of move_turtlebot3 as a student's .zip, and a .tar.gz that reaches out."""
+    folder = tmp_path_factory.mktemp('archives')
+    model = os.path.join(ROOT, 'src', 'move_turtlebot3')
+    zipped = str(folder / 'zipped_model.zip')
+    with zipfile.ZipFile(zipped, 'w') as archive:
+        for parent, _, names in os.walk(model):
+            for name in names:
+                path = os.path.join(parent, name)
+                info = zipfile.ZipInfo(os.path.join('catkin_ws', 'src', 'move_turtlebot3',
+                                                    os.path.relpath(path, model)))
+                info.external_attr = (os.stat(path).st_mode & 0o777) << 16
+                with open(path, 'rb') as stream:
+                    archive.writestr(info, stream.read())
+    traversal = str(folder / 'traversal.tar.gz')
+    with tarfile.open(traversal, 'w:gz') as archive:
+        info = tarfile.TarInfo('../../grader_was_here')
+        info.size = 3
+        archive.addfile(info, io.BytesIO(b'bad'))
+    return zipped, traversal, str(folder)
+
+
+@pytest.mark.parametrize('lab', labs())
+def test_example_class_in_containers(lab, tmp_path):
+    students = sorted(expected(lab))
+    out = str(tmp_path / 'grades')
+    result = grade(lab, [os.path.join(EXAMPLES, lab, s) for s in students], out, '--jobs', '2')
+    assert result.returncode == 0, result.stdout
+    for student in students:
+        assert ('] %s: %g / ' % (student, expected(lab)[student]['score'])) in result.stdout
+    rows, details = read_results(out)
+    assert sorted(rows) == students
+    assert mismatches(lab, rows, details, students) == []
+    assert os.path.isfile(os.path.join(out, 'report.html'))
+    assert sorted(os.listdir(os.path.join(out, 'junit'))) == sorted(s + '.xml' for s in students)
+    # Nothing left running, nothing written where the hostile one tried to write.
+    left = subprocess.run(['docker', 'ps', '-aq', '--filter', 'name=course-grader-'], stdout=subprocess.PIPE,
+                          universal_newlines=True).stdout.split()
+    assert left == []
+    for parent, _, names in os.walk(ROOT):
+        assert 'hostile_was_here' not in names, parent
+
+
+def test_archives_and_grading_again_into_the_same_folder(archives, tmp_path):
+    zipped, traversal, folder = archives
+    out = str(tmp_path / 'grades')
+    result = grade('move_turtlebot3', [zipped, traversal, os.path.join(EXAMPLES, 'move_turtlebot3', 'model')], out)
+    assert result.returncode == 0, result.stdout
+    rows, details = read_results(out)
+    assert rows['zipped_model']['score'] == rows['model']['score'] == '14'   # the same code, the same score
+    assert rows['traversal']['score'] == '0'
+    assert "the archive holds '../../grader_was_here', which points outside its folder: refused" == \
+        details['traversal']['error']
+    assert not os.path.exists(os.path.join(os.path.dirname(folder), 'grader_was_here'))
+    # Again into the same folder, one student only: the old results are gone, not mixed in.
+    result = grade('move_turtlebot3', [traversal], out)
+    assert result.returncode == 0, result.stdout
+    rows, _ = read_results(out)
+    assert sorted(rows) == ['traversal']
+    assert sorted(os.listdir(out)) == ['.course_grader', 'grades.csv', 'junit', 'report.html', 'traversal']
+    assert os.listdir(os.path.join(out, 'junit')) == ['traversal.xml']
+
+
+def test_the_grader_itself_failing_says_why_with_status_2(tmp_path):
+    result = grade('no_such_lab', [str(tmp_path)], str(tmp_path / 'out'), '--no-container')
+    assert result.returncode == 2
+    assert "grade: no rubric for lab 'no_such_lab' (the labs are: " in result.stdout
+    result = grade('move_turtlebot3', [str(tmp_path / 'nobody')], str(tmp_path / 'out'), '--no-container')
+    assert (result.returncode, result.stdout.splitlines()[-1]) == (2, 'grade: no such submission: %s' % (tmp_path / 'nobody'))
+    (tmp_path / 'mine').mkdir()
+    (tmp_path / 'mine' / 'thesis.tex').write_text('precious')
+    result = grade('move_turtlebot3', [os.path.join(EXAMPLES, 'move_turtlebot3', 'model')], str(tmp_path / 'mine'))
+    assert result.returncode == 2
+    assert 'holds files the grader did not write: give an empty or new folder' in result.stdout
+    assert (tmp_path / 'mine' / 'thesis.tex').read_text() == 'precious'

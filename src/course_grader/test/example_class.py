@@ -1,0 +1,52 @@
+"""The example classes (examples/grading/<lab>/) and what the grader must give them
+(expected.yaml): shared by the container test and the --no-container rostest."""
+import csv
+import json
+import os
+
+import yaml
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..', '..'))
+EXAMPLES = os.path.join(ROOT, 'examples', 'grading')
+
+
+def labs():
+    return sorted(lab for lab in os.listdir(EXAMPLES)
+                  if os.path.isfile(os.path.join(EXAMPLES, lab, 'expected.yaml')))
+
+
+def expected(lab):
+    with open(os.path.join(EXAMPLES, lab, 'expected.yaml')) as stream:
+        return yaml.safe_load(stream)
+
+
+def read_results(out):
+    """grades.csv rows and result.json of every student, by student."""
+    with open(os.path.join(out, 'grades.csv')) as stream:
+        rows = {row['student']: row for row in csv.DictReader(stream)}
+    details = {}
+    for student in rows:
+        with open(os.path.join(out, student, 'result.json')) as stream:
+            details[student] = json.load(stream)
+    return rows, details
+
+
+def sentences_of(result, criterion_id):
+    criterion = next(c for c in result['criteria'] if c['id'] == criterion_id)
+    return '\n'.join([criterion['reason']] + criterion['hints'])
+
+
+def mismatches(lab, rows, details, students):
+    """What differs from expected.yaml, as sentences (empty: all as expected)."""
+    found = []
+    for student in students:
+        wanted = expected(lab)[student]
+        if float(rows[student]['score']) != wanted['score']:
+            found.append('%s: score %s, expected %s; criteria: %s' % (
+                student, rows[student]['score'], wanted['score'],
+                [(c['id'], c['points'], c['reason'], c['hints']) for c in details[student]['criteria']]))
+        for criterion_id, sentence in (wanted.get('sentences') or {}).items():
+            said = sentences_of(details[student], criterion_id)
+            if sentence not in said:
+                found.append('%s, %s: expected %r in %r' % (student, criterion_id, sentence, said))
+    return found

@@ -1,0 +1,68 @@
+"""Scores, untrusted result files, and the three report formats (no ROS)."""
+import csv
+import json
+import os
+import xml.etree.ElementTree as ET
+
+from course_grader import reports, results, rubric
+from course_grader.results import Outcome
+
+RUBRIC = rubric.load('move_turtlebot3')
+
+
+def alice():
+    return results.score(RUBRIC, {
+        'builds': Outcome(True, 'built'), 'executable': Outcome(False, 'a.py is not executable', ['b.py too']),
+        'trajectory_rate': Outcome(True, 'ok'), 'trajectory_circle': Outcome(True, 'ok'),
+        'laser_data': Outcome(True, 'ok'), 'avoid_stops': Outcome(False, 'expected 0.35-0.5; seen 0.95 m'),
+        'avoid_stays': Outcome(True, 'ok')}, 'alice', pictures=['trajectory.png'], seconds=30)
+
+
+def test_score_adds_the_points_of_passed_criteria_and_unchecked_ones_get_the_error():
+    assert alice()['score'] == 10 and alice()['max_score'] == 14
+    failed = results.failed(RUBRIC, 'bob', 'no package named move_turtlebot3')
+    assert failed['score'] == 0
+    assert {c['reason'] for c in failed['criteria']} == {'no package named move_turtlebot3'}
+
+
+def test_a_result_file_cannot_claim_more_than_the_rubric_gives(tmp_path):
+    forged = alice()
+    for criterion in forged['criteria']:
+        criterion['points'] = 1000
+    forged['score'] = 99999
+    forged['criteria'].append({'id': 'bonus', 'points': 50, 'passed': True})
+    forged['pictures'] = ['../../etc/passwd.png', 'trajectory.png']
+    results.write(forged, str(tmp_path))
+    read = results.read(RUBRIC, 'alice', str(tmp_path))
+    assert read['score'] == 10
+    assert [c['id'] for c in read['criteria']] == [c.id for c in RUBRIC.criteria]
+    assert read['pictures'] == ['trajectory.png']
+    (tmp_path / 'result.json').write_text('{"criteria": 3}')
+    assert results.read(RUBRIC, 'alice', str(tmp_path)) is None
+
+
+def test_csv_junit_and_html(tmp_path):
+    class_results = [alice(), results.failed(RUBRIC, 'bob', 'the package does not build <b>')]
+    (tmp_path / 'alice').mkdir()
+    (tmp_path / 'alice' / 'trajectory.png').write_bytes(b'\x89PNG fake')
+    (tmp_path / 'alice' / 'build.log').write_text('\n'.join('line %d' % i for i in range(100)))
+    reports.write_all(class_results, RUBRIC, str(tmp_path), seconds=61)
+    with open(str(tmp_path / 'grades.csv')) as stream:
+        rows = list(csv.DictReader(stream))
+    assert [row['student'] for row in rows] == ['alice', 'bob']
+    assert list(rows[0])[:4] == ['student', 'lab', 'score', 'max_score']
+    assert (rows[0]['score'], rows[0]['max_score'], rows[0]['avoid_stops'], rows[0]['laser_data']) == \
+        ('10', '14', '0', '3')
+    suite = ET.parse(str(tmp_path / 'junit' / 'alice.xml')).getroot()
+    assert (suite.get('tests'), suite.get('failures')) == ('7', '2')
+    failures = {case.get('name'): case.find('failure') for case in suite.iter('testcase')}
+    assert failures['builds'] is None
+    assert failures['avoid_stops'].get('message') == 'expected 0.35-0.5; seen 0.95 m'
+    assert failures['executable'].text == 'a.py is not executable\nb.py too'
+    page = (tmp_path / 'report.html').read_text()
+    assert page.count('<h2 id=') == 2
+    assert 'alice: 10 / 14' in page and 'the package does not build &lt;b&gt;' in page
+    assert 'data:image/png;base64,' in page
+    assert 'line 99' in page and 'line 74' not in page      # the log's tail only
+    json.dumps(class_results)
+    assert os.path.exists(str(tmp_path / 'junit' / 'bob.xml'))

@@ -1,0 +1,122 @@
+"""Unpacking submissions safely and finding the lab's package in them (no ROS)."""
+import io
+import os
+import tarfile
+import zipfile
+
+import pytest
+
+from course_grader import submission
+from course_grader.submission import SubmissionError
+
+PACKAGE_XML = '<package format="2"><name>move_turtlebot3</name></package>'
+
+
+def tar_with(path, members):
+    """members: (name, bytes or None for a folder, or ('link', target) / ('hard', target))."""
+    with tarfile.open(path, 'w:gz') as tar:
+        for name, content in members:
+            info = tarfile.TarInfo(name)
+            if isinstance(content, tuple):
+                info.type = tarfile.SYMTYPE if content[0] == 'link' else tarfile.LNKTYPE
+                info.linkname = content[1]
+                tar.addfile(info)
+            elif content is None:
+                info.type = tarfile.DIRTYPE
+                tar.addfile(info)
+            else:
+                info.size = len(content)
+                info.mode = 0o755
+                tar.addfile(info, io.BytesIO(content))
+    return str(path)
+
+
+def test_student_names_from_folders_and_archives():
+    assert submission.student_name('/x/alice.tar.gz') == 'alice'
+    assert submission.student_name('/x/bob.zip') == 'bob'
+    assert submission.student_name('/x/carol/') == 'carol'
+    assert submission.student_name('/x/d a$n.zip') == 'd_a_n'
+
+
+def test_tar_unpacks_with_execute_bits_and_the_package_is_found(tmp_path):
+    archive = tar_with(tmp_path / 'alice.tar.gz', [
+        ('ws/src/move_turtlebot3/package.xml', PACKAGE_XML.encode()),
+        ('ws/src/move_turtlebot3/scripts/trajectory.py', b'#!/usr/bin/env python3\n'),
+        ('ws/src/move_turtlebot3/scripts/link.py', ('link', 'trajectory.py'))])
+    out = tmp_path / 'out'
+    out.mkdir()
+    folder = submission.unpack(archive, str(out))
+    assert submission.find_package(folder, 'move_turtlebot3') == 'ws/src/move_turtlebot3'
+    script = os.path.join(folder, 'ws/src/move_turtlebot3/scripts/trajectory.py')
+    assert os.access(script, os.X_OK)
+    assert submission.find_file(os.path.join(folder, 'ws/src/move_turtlebot3'), 'trajectory.py') == \
+        ['scripts/trajectory.py']
+
+
+@pytest.mark.parametrize('members, message', [
+    ([('../evil.py', b'x')], 'points outside its folder'),
+    ([('/etc/evil', b'x')], 'absolute path'),
+    ([('a/link', ('link', '/etc/passwd'))], 'link .* outside its folder'),
+    ([('a/link', ('link', '../../etc'))], 'outside its folder'),
+    ([('a/hard', ('hard', '../../etc/passwd'))], 'outside its folder'),
+])
+def test_tar_path_traversal_and_links_out_are_refused(tmp_path, members, message):
+    archive = tar_with(tmp_path / 'mallory.tar.gz', members)
+    out = tmp_path / 'out'
+    out.mkdir()
+    with pytest.raises(SubmissionError, match=message):
+        submission.unpack(archive, str(out))
+    assert not (tmp_path / 'evil.py').exists()
+
+
+def test_zip_traversal_bomb_and_garbage_are_refused(tmp_path, monkeypatch):
+    out = tmp_path / 'out'
+    out.mkdir()
+    evil = tmp_path / 'evil.zip'
+    with zipfile.ZipFile(str(evil), 'w') as zipped:
+        zipped.writestr('../../outside.txt', 'x')
+    with pytest.raises(SubmissionError, match='outside its folder'):
+        submission.unpack(str(evil), str(out))
+    bomb = tmp_path / 'bomb.zip'
+    with zipfile.ZipFile(str(bomb), 'w', zipfile.ZIP_DEFLATED) as zipped:
+        zipped.writestr('zeros', b'\0' * (3 * 2 ** 20))
+    monkeypatch.setattr(submission, 'MAX_UNPACKED_BYTES', 2 ** 20)
+    with pytest.raises(SubmissionError, match='more than 1 MB'):
+        submission.unpack(str(bomb), str(out))
+    garbage = tmp_path / 'garbage.zip'
+    garbage.write_bytes(b'not a zip')
+    with pytest.raises(SubmissionError, match='not a readable .zip'):
+        submission.unpack(str(garbage), str(out))
+    (tmp_path / 'x.rar').write_text('')
+    with pytest.raises(SubmissionError, match='neither a folder nor'):
+        submission.unpack(str(tmp_path / 'x.rar'), str(out))
+
+
+def test_tar_bomb_is_refused_before_anything_is_written(tmp_path, monkeypatch):
+    monkeypatch.setattr(submission, 'MAX_UNPACKED_BYTES', 1000)
+    archive = tar_with(tmp_path / 'bomb.tar.gz', [('a', b'x' * 600), ('b', b'x' * 600)])
+    out = tmp_path / 'out'
+    out.mkdir()
+    with pytest.raises(SubmissionError, match='unpacks to more than'):
+        submission.unpack(archive, str(out))
+    assert os.listdir(str(out)) == []
+
+
+def test_folder_with_a_link_out_is_refused(tmp_path):
+    folder = tmp_path / 'eve'
+    folder.mkdir()
+    os.symlink('/etc/passwd', str(folder / 'passwd'))
+    with pytest.raises(SubmissionError, match='passwd is a link to /etc/passwd, outside the submission'):
+        submission.unpack(str(folder), str(tmp_path))
+
+
+def test_missing_or_twice_present_package_is_named(tmp_path):
+    (tmp_path / 'other').mkdir()
+    (tmp_path / 'other' / 'package.xml').write_text('<package><name>my_turtle</name></package>')
+    with pytest.raises(SubmissionError, match=r'no package named move_turtlebot3 .* found: my_turtle \(other\)'):
+        submission.find_package(str(tmp_path), 'move_turtlebot3')
+    for copy in ('a', 'b'):
+        (tmp_path / copy).mkdir()
+        (tmp_path / copy / 'package.xml').write_text(PACKAGE_XML)
+    with pytest.raises(SubmissionError, match='there 2 times'):
+        submission.find_package(str(tmp_path), 'move_turtlebot3')
