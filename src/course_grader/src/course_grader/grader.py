@@ -224,7 +224,7 @@ class Grader:
         return self._reason(code, log)
 
     def _run_on_host(self, submission, package, student, staging, scratch):
-        from course_common.processes import stop_process_group
+        from course_testing.processes import stop_process_group
         work = os.path.join(scratch, 'ws')
         os.makedirs(work)
         env = dict(os.environ, ROS_HOME=os.path.join(scratch, 'ros'))

@@ -70,7 +70,7 @@ class Session:
 def run_logged(argv, log_path, timeout, cwd=None, env=None):
     """Run a command in its own process group, output to log_path (at most 20 MB); on timeout
     kill the group. Returns the exit code, or None when the time limit was reached."""
-    from course_common.processes import stop_process_group
+    from course_testing.processes import stop_process_group
     with open(log_path, 'wb') as log:
         process = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, cwd=cwd,
                                    env=env, start_new_session=True)
@@ -124,7 +124,7 @@ class Master:
     """A roscore of our own on a free port (and the grader's own rospy node on it)."""
 
     def __init__(self, log_path):
-        from course_common.processes import free_port
+        from course_testing.processes import free_port
         import rosgraph
         self.port = free_port()
         os.environ['ROS_MASTER_URI'] = 'http://localhost:%d' % self.port
@@ -147,7 +147,7 @@ class Master:
         rospy.init_node('course_grader', disable_signals=True)
 
     def stop(self):
-        from course_common.processes import stop_process_group
+        from course_testing.processes import stop_process_group
         import rospy
         rospy.signal_shutdown('graded')
         stop_process_group(self.process, 15)

@@ -10,15 +10,15 @@ from course_grader.results import Outcome
 from course_grader.session import note_process_group, test_helpers
 
 test_helpers('move_turtlebot3')
-import lab_sim  # noqa: E402  (the move_turtlebot3 tests' helpers: Launch, RobotWatch, ...)
-from course_common.processes import stop_process_group  # noqa: E402
+import move_turtlebot3_testing  # noqa: E402  (the move_turtlebot3 tests' helpers: Launch, RobotWatch, ...)
+from course_testing.processes import stop_process_group  # noqa: E402
 
 MAX_LINES = 5000          # lines of output kept in memory (a node printing without end stays bounded)
 MAX_LOG_BYTES = 5 * 2 ** 20
 
 
-class BoundedLaunch(lab_sim.Launch):
-    """lab_sim.Launch that keeps the last MAX_LINES lines and logs the first MAX_LOG_BYTES."""
+class BoundedLaunch(move_turtlebot3_testing.Launch):
+    """move_turtlebot3_testing.Launch that keeps the last MAX_LINES lines and logs the first MAX_LOG_BYTES."""
 
     def __init__(self, argv, log_path):
         self._log = open(log_path, 'w', errors='replace')
@@ -121,7 +121,7 @@ def simulator(session, log_name, picture=None, **args):
 def node_names():
     """The nodes the master knows; none while it does not answer (a submission took every process)."""
     try:
-        return lab_sim.node_names()
+        return move_turtlebot3_testing.node_names()
     except OSError:
         return set()
 

@@ -1,12 +1,12 @@
 """The TurtleBot3 lab (seed 001): trajectory.py, laser_data.py, avoid_obstacle.py on fake_tb3, with
-the checks of move_turtlebot3's own tests (lab_sim, test_trajectory, test_laser_data)."""
+the checks of move_turtlebot3's own tests (move_turtlebot3_testing, test_trajectory, test_laser_data)."""
 import math
 
 from course_grader import feedback
-from course_grader.labs.common import StudentNode, lab_sim, run_each, simulator
+from course_grader.labs.common import StudentNode, move_turtlebot3_testing, run_each, simulator
 from course_grader.results import Outcome
 from course_grader.session import Deadline
-from course_common.testing import wait_until
+from course_testing.waiting import wait_until
 
 import test_laser_data    # noqa: E402  (found through common's test_helpers)
 import test_trajectory    # noqa: E402
@@ -49,7 +49,7 @@ class Run:
         self.session = session
         self.stopped = False
         self.deadline = Deadline(session.rubric.limits['run_seconds'])
-        self.watch = lab_sim.RobotWatch()
+        self.watch = move_turtlebot3_testing.RobotWatch()
         self.sim = simulator(session, 'sim_%s.txt' % script.split('.')[0], picture, **sim_args)
         self.running = _wait(lambda: self.watch.copy('poses') and self.watch.copy('scans')
                              and self.watch.collisions is not None, self.deadline, 'fake_tb3')
@@ -113,7 +113,7 @@ def check_trajectory(session):
         # The circle of those commands, from the spawn pose.
         expected_radius = abs(linear / angular) if angular else float('inf')
         expected_circle = 'a circle of radius %.2f m through the spawn pose (0, 0)' % expected_radius
-        length = lab_sim.path_length(poses)
+        length = move_turtlebot3_testing.travelled(poses)
         if length < 0.1:
             outcomes['trajectory_circle'] = Outcome(False, 'expected %s; seen: the robot moved %.2f m in '
                                                     '%.0f simulated seconds' % (expected_circle, length, seen_for), hints)
@@ -203,12 +203,12 @@ def check_avoid_obstacle(session):
         spawn = watch.copy('poses')[0]
 
         def moved():
-            return lab_sim.largest_move([spawn] + watch.copy('poses'))
+            return move_turtlebot3_testing.largest_move([spawn] + watch.copy('poses'))
 
         def stopped_for(seconds):
             poses = watch.copy('poses')
             recent = [p for p in poses if p[0] >= poses[-1][0] - seconds]
-            return recent[0][0] <= poses[-1][0] - seconds + 0.1 and lab_sim.largest_move(recent) < 1e-4
+            return recent[0][0] <= poses[-1][0] - seconds + 0.1 and move_turtlebot3_testing.largest_move(recent) < 1e-4
 
         drove = _wait(lambda: moved() >= stops_c.get('min_drive', 0.5), run.deadline, 'driving', run.node)
         if not drove:
@@ -232,14 +232,14 @@ def check_avoid_obstacle(session):
         after = watch.poses_since(first_stop[0])
         fronts = sorted(scan.ranges[0] for scan in watch.copy('scans')[-max(3, int(stay * 5)):])
         front = fronts[len(fronts) // 2]
-        creep = lab_sim.largest_move(after)
+        creep = move_turtlebot3_testing.largest_move(after)
         watched = after[-1][0] - first_stop[0]
         collisions = watch.collisions or 0
         run.stop()
         hints = run.node.explain()
         outcomes = {'avoid_stops': Outcome(
             low <= front <= high, 'expected %s; seen: it drove %.2f m and stopped with the front beam at '
-            '%.3f m (median over the stop)' % (expected, lab_sim.path_length([spawn] + after[:1]), front), hints)}
+            '%.3f m (median over the stop)' % (expected, move_turtlebot3_testing.travelled([spawn] + after[:1]), front), hints)}
         ok = collisions == 0 and creep <= stays_c.get('max_creep', 0.11) and watched >= stay - 0.5
         outcomes['avoid_stays'] = Outcome(ok, 'expected no collision and at most %.2f m moved in the %g simulated '
                                           'seconds after the stop; seen %d collisions, %.3f m moved in %.1f s' % (

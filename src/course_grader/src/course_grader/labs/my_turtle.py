@@ -1,5 +1,5 @@
 """The turtlesim lab (seed 000): my_turtle's move_turtle.launch, the teleop relay and the pose
-printout, on the course's turtlesim, with the helpers of my_turtle's own tests (turtle_watch)."""
+printout, on the course's turtlesim, with the helpers of my_turtle's own tests (my_turtle_testing)."""
 import re
 import threading
 import time
@@ -10,10 +10,10 @@ from geometry_msgs.msg import Twist
 from course_grader.labs.common import BoundedLaunch, node_names, run_each
 from course_grader.results import Outcome
 from course_grader.session import Deadline, test_helpers
-from course_common.testing import wait_until
+from course_testing.waiting import wait_until
 
 test_helpers('my_turtle')
-import turtle_watch  # noqa: E402  (my_turtle's test helpers: PoseWatch, path_length, turned)
+import my_turtle_testing  # noqa: E402  (my_turtle's test helpers: turtle1_poses, travelled, turned)
 
 PRINTED_POSE = re.compile(r'x: (-?\d+\.\d+), y: (-?\d+\.\d+)')
 
@@ -60,7 +60,7 @@ def check_turtle(session):
             if not _wait(lambda: '/my_turtle_node' in node_names(), rubric.limits['start_seconds']):
                 reason = 'not checked: the node %s did not start' % launch_c.get('executable', 'my_turtle_node')
                 return dict(outcomes, teleop=Outcome(False, reason), prints_pose=Outcome(False, reason))
-        watch = turtle_watch.PoseWatch()
+        watch = my_turtle_testing.turtle1_poses()
         teleop = rospy.Publisher('/cmd_vel_mux/input/teleop', Twist, queue_size=1)
         _wait(lambda: teleop.get_num_connections() > 0, 10)
         command = Twist()
@@ -74,13 +74,13 @@ def check_turtle(session):
                 time.sleep(0.1)
         sender = threading.Thread(target=hold, daemon=True)
         sender.start()
-        _wait(lambda: turtle_watch.path_length(watch.samples[-10:]) > 0.01, min(10, deadline.left()))
+        _wait(lambda: my_turtle_testing.travelled(watch.entries()[-10:]) > 0.01, min(10, deadline.left()))
         samples = watch.record(teleop_c.get('seconds', 2.0))
         holding.clear()
         sender.join()
         teleop.publish(Twist())
-        speed = turtle_watch.path_length(samples) / turtle_watch.duration(samples)
-        rate = turtle_watch.turned(samples) / turtle_watch.duration(samples)
+        speed = my_turtle_testing.travelled(samples) / my_turtle_testing.duration(samples)
+        rate = my_turtle_testing.turned(samples) / my_turtle_testing.duration(samples)
         tolerance = teleop_c.get('tolerance', 0.1)
         ok = (abs(speed - command.linear.x) <= tolerance * abs(command.linear.x)
               and abs(rate - command.angular.z) <= tolerance * abs(command.angular.z))
@@ -88,7 +88,7 @@ def check_turtle(session):
                                      'on cmd_vel_mux/input/teleop; seen %.2f m/s turning %.2f rad/s' % (
                                          command.linear.x, command.angular.z, speed, rate))
         # The printout: after the turtle stopped, the last pose printed is the pose turtlesim publishes.
-        _wait(lambda: turtle_watch.path_length(watch.record(0.3)) < 1e-3, min(10, deadline.left()))
+        _wait(lambda: my_turtle_testing.travelled(watch.record(0.3)) < 1e-3, min(10, deadline.left()))
         final = watch.latest()
         node_run = runs[-1]
 
