@@ -23,6 +23,7 @@ import test_listener_circle        # noqa: E402  (assert_printed_poses_were_publ
 import test_publisher_subscriber   # noqa: E402  (rate_of, assert_cycles_through)
 
 NUMBER = test_listener_circle.NUMBER
+COLOUR = re.compile(r'\x1b\[[0-9;]*m')
 SPAWN_START = (1.0, 1.0, 0.0)      # where exercise4.launch (and so exercise5.launch) spawns robotics
 
 
@@ -48,7 +49,8 @@ def _printed(run, pattern):
 
 def _tail(run, count=2):
     """The first error lines of a launch, as a hint of why nothing came of it."""
-    errors = [line.strip() for line in run.lines if 'ERROR' in line or 'rror' in line or 'not found' in line]
+    lines = [COLOUR.sub('', line).strip() for line in run.lines]   # roslaunch prints its errors in red
+    errors = [line for line in lines if 'ERROR' in line or 'rror' in line or 'Exception' in line or 'not found' in line]
     return (' | '.join(errors[:count])) or 'no error printed'
 
 
