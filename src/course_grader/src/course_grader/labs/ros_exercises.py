@@ -107,8 +107,9 @@ def check_publisher_subscriber(session):
             wrong_digits = _failure(test_publisher_subscriber.assert_cycles_through,
                                     [digit.data for digit in digits.messages()], id_number)
             ok = abs(measured - rate) <= rate_c.get('tolerance', 1.0) and not wrong_digits
-            outcomes['publisher_rate'] = Outcome(ok, 'expected the digits of %s, in order, at %g Hz ± %g; seen %.2f Hz%s' % (
-                id_number, rate, rate_c.get('tolerance', 1.0), measured, '; ' + wrong_digits if wrong_digits else ''))
+            outcomes['publisher_rate'] = Outcome(ok, 'expected the digits of %s, in order, at %g Hz ± %g; seen '
+                                                 '%.2f Hz%s' % (id_number, rate, rate_c.get('tolerance', 1.0), measured,
+                                                                '; ' + wrong_digits if wrong_digits else ''))
         heard_pattern = r'I heard: \[(\d+)\]'
         wanted = 3 * len(id_number)
         exercise.wait(lambda: len(exercise.printed(heard_pattern)) >= wanted, 10)
@@ -148,8 +149,9 @@ def check_listener(session):
         wrong = _failure(test_listener_circle.assert_printed_poses_were_published, printed, poses)
         if not moved:
             wrong = 'the printed pose did not follow the turtle driven to x > 6 (last printed %s)' % (printed[-1],)
+        seen = wrong or '%d poses printed' % len(printed)
         return {'listener_prints_pose': Outcome(not wrong, 'expected the pose turtlesim publishes, printed as '
-                                                'the turtle moves; seen %s' % (wrong or '%d poses printed' % len(printed)))}
+                                                'the turtle moves; seen %s' % seen)}
     finally:
         if timer:
             timer.shutdown()
