@@ -36,7 +36,8 @@ def describe_labs():
     for lab in rubrics.labs():
         rubric = rubrics.load(lab)
         lines.append('  %s: %s (%g points)' % (lab, rubric.title, rubric.max_score))
-        lines += ['    %-18s %4g  %s' % (c.id, c.points, c.title) for c in rubric.criteria]
+        width = max([18] + [len(c.id) for c in rubric.criteria])
+        lines += ['    %-*s %4g  %s' % (width, c.id, c.points, c.title) for c in rubric.criteria]
     return '\n'.join(lines)
 
 

@@ -1,0 +1,96 @@
+#!/usr/bin/env python3
+"""Exercises 2 and 3: the listener prints the pose the simulator publishes, and the circle node
+drives turtle1, or the spawned turtle "robotics" of the report's Fig. 5, round a circle of radius
+1 m while printing the pose."""
+import math
+import unittest
+
+import numpy
+import rospy
+import rostest
+from geometry_msgs.msg import Twist
+
+from course_testing.waiting import wait_until
+from ros_exercises_testing import Command, pose_array, turtle_poses
+import figures
+
+TURTLE1_START = (5.544445, 5.544445)
+NUMBER = r'(-?\d+\.\d+)'
+
+
+def assert_printed_poses_were_published(test, printed, recorder):
+    """Every printed (x, y, theta) is one of the poses the simulator published."""
+    published = pose_array(recorder)[:, :3]
+    for line in printed:
+        error = numpy.abs(published - [float(value) for value in line]).max(axis=1).min()
+        test.assertLess(error, 2e-6, 'printed %s, never published' % (line,))
+
+
+def assert_circle(test, recorder, centre, radius):
+    """One full turn of moving poses lies on a circle of `radius` around `centre`, within 2 %."""
+    def moving_points():
+        poses = pose_array(recorder)
+        return poses[poses[:, 3] > 0, :2] if len(poses) else poses
+
+    turn_poses = int(2 * math.pi / radius / 0.016) + 10  # turtlesim moves 0.016 s per pose
+    wait_until(lambda: len(moving_points()) >= turn_poses, 30, 'a full turn of poses')
+    points = moving_points()
+    centre_x, centre_y, fitted_radius = figures.fit_circle(points)
+    test.assertAlmostEqual(fitted_radius, radius, delta=0.02 * radius)
+    test.assertLess(math.hypot(centre_x - centre[0], centre_y - centre[1]), 0.02 * radius,
+                    'centre (%f, %f)' % (centre_x, centre_y))
+    distances = numpy.hypot(points[:, 0] - centre[0], points[:, 1] - centre[1])
+    test.assertLess(numpy.abs(distances - radius).max(), 0.02 * radius)
+
+
+class TestListenerCircle(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('test_listener_circle')
+
+    def test_exercise2_listener_prints_the_pose(self):
+        self.recorder = turtle_poses('turtle1')
+        listener = Command('roslaunch', 'ros_exercises', 'exercise2.launch')
+        try:
+            line = r'x: %s, y: %s, theta: %s' % (NUMBER, NUMBER, NUMBER)
+            self.assertEqual(listener.wait_for(line)[0], ('5.544445', '5.544445', '0.000000'))
+            # Drive the turtle as a teleop would, until the listener has printed it moving.
+            teleop = rospy.Publisher('/turtle1/cmd_vel', Twist, queue_size=1)
+            command = Twist()
+            command.linear.x, command.angular.z = 1.0, 0.5
+            timer = rospy.Timer(rospy.Duration(0.05), lambda _: teleop.publish(command))
+            try:
+                wait_until(lambda: any(float(x) > 6.0 for x, _, _ in listener.matches(line)), 30,
+                           'the listener printing the turtle beyond x = 6')
+            finally:
+                timer.shutdown()
+            printed = listener.matches(line)
+            assert_printed_poses_were_published(self, printed, self.recorder)
+            self.assertGreater(len(set(printed)), 20, 'the printed pose hardly changed')
+        finally:
+            self.assertEqual(listener.stop(), 0)
+
+    def tearDown(self):
+        self.recorder.close()
+
+    def drive_circle(self, turtle, centre, *launch_arguments):
+        """Runs exercise3.launch and checks the circle of radius 1 m and the printed poses."""
+        self.recorder = turtle_poses(turtle)
+        circle = Command('roslaunch', 'ros_exercises', 'exercise3.launch', *launch_arguments)
+        try:
+            assert_circle(self, self.recorder, centre, 1.0)
+            printed = circle.wait_for(r'Turtle subscriber@\[%s, %s, %s\]' % (NUMBER, NUMBER, NUMBER), count=100)
+            assert_printed_poses_were_published(self, printed, self.recorder)
+        finally:
+            self.assertEqual(circle.stop(), 0)
+
+    def test_exercise3_turtle1_circle_of_radius_1(self):
+        self.drive_circle('turtle1', (TURTLE1_START[0], TURTLE1_START[1] + 1.0))
+
+    def test_exercise3_report_variant_on_robotics(self):
+        # exercise3.launch spawns "robotics" at (4, 2, 0): the centre is 1 m to its left.
+        self.drive_circle('robotics', (4.0, 3.0), 'turtle:=robotics')
+
+
+if __name__ == '__main__':
+    rostest.rosrun('ros_exercises', 'test_listener_circle', TestListenerCircle)
