@@ -65,9 +65,11 @@ def test_leaving_raw_mode_after_the_terminal_is_gone_is_not_an_error():
 
 
 TELEOP = '''
-import signal, sys
+import os, signal, sys
 from course_common.keyboard import teleop_keys, write_line
-signal.signal(signal.SIGINT, lambda *_: write_line('interrupted'))  # as rospy's handler would shut down
+# As rospy's handler would shut down. A raw os.write: a signal that interrupts write_line('ready')
+# runs this handler inside that write, where a second buffered write to stdout is refused.
+signal.signal(signal.SIGINT, lambda *_: os.write(sys.stdout.fileno(), b'interrupted\\r\\n'))
 with teleop_keys('teleop') as keys:
     write_line('ready')
     while keys.read(5.0) != 'q':
