@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Runs every test of the workspace: ./test.sh        (or only some packages: ./test.sh turtlesim my_turtle)
 # Installs what is missing, builds, runs the pure tests (pytest), then the rostests and the workspace's
-# slow pytests two at a time, and ends with one line `N passed, N failed` (docs/testing.md).
+# slow pytests two (or three, on a quiet machine) at a time, and ends with one line `N passed, N failed`
+# (docs/testing.md).
 # Exit status 0 only if every step found its tests, ran them, and they all passed.
-# Environment: TEST_JOBS  how many slow steps run side by side (default 2; 1 = one after the other)
+# Environment: TEST_JOBS  how many slow steps run side by side (default auto: 2, and a third while a
+#                         core is idle; 1 = one after the other)
 set -uo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 cd "$ROOT"
@@ -85,7 +87,7 @@ if [ $# -eq 0 ] && [ -d "$ROOT/tests" ]; then
     expected+=(pytest/workspace.xml)
 fi
 
-# 2. The slow steps, two at a time: every registered rostest (each starts its own master on a free
+# 2. The slow steps, two or three at a time: every registered rostest (each starts its own master on a free
 #    port) and, when no package is named, the workspace's tests in tests/.
 jobs_file="$LOGS/jobs.txt"
 : > "$jobs_file"
@@ -138,9 +140,10 @@ if [ -s "$jobs_file" ]; then
     if ! "$ROOT/tools/setup.sh" --make tests -j2 > "$LOGS/test_build.log" 2>&1; then
         tail -n 40 "$LOGS/test_build.log"; step_failures+=("building the tests (log $LOGS/test_build.log)")
     fi
-    echo "test: $(wc -l < "$jobs_file") rostests and slow pytests, ${TEST_JOBS:-2} at a time (logs in ${LOGS#"$ROOT"/})"
-    /usr/bin/python3 "$ROOT/tools/run_test_jobs.py" --jobs "${TEST_JOBS:-2}" --logs "$LOGS" \
-        --times "$BASE/build/test_durations.txt" --failed-steps "$LOGS/failed_steps.txt" < "$jobs_file" \
+    echo "test: $(wc -l < "$jobs_file") rostests and slow pytests, ${TEST_JOBS:-2 or 3} at a time (logs in ${LOGS#"$ROOT"/})"
+    /usr/bin/python3 "$ROOT/tools/run_test_jobs.py" --jobs "${TEST_JOBS:-auto}" --logs "$LOGS" \
+        --times "$BASE/build/test_durations.txt" --first-times "$ROOT/tools/test-step-seconds.txt" \
+        --failed-steps "$LOGS/failed_steps.txt" < "$jobs_file" \
         || step_failures+=("running the slow steps")
     [ -f "$LOGS/failed_steps.txt" ] && mapfile -t -O ${#step_failures[@]} step_failures < "$LOGS/failed_steps.txt"
 fi

@@ -4,6 +4,7 @@ Each case runs the real test.sh, count_results.py and run_test_jobs.py in a smal
 own, with a tools/setup.sh and tools/env.sh that install and build nothing, and with a PATH that has
 no catkin on it (as on a fresh machine before tools/setup.sh has installed it).
 """
+import importlib.util
 import os
 import shutil
 import subprocess
@@ -160,7 +161,8 @@ def test_a_job_that_needs_the_machine_alone_runs_with_nothing_beside_it(tmp_path
          '--logs', str(tmp_path / 'logs'), '--times', str(tmp_path / 'times.txt'),
          '--failed-steps', str(tmp_path / 'failed.txt')],
         input=''.join(lines), stdout=subprocess.PIPE, universal_newlines=True, timeout=60)
-    assert result.returncode == 0 and result.stdout.count('\n') == 4, result.stdout
+    assert result.returncode == 0 and result.stdout.count('\n') == 5, result.stdout
+    assert result.stdout.endswith('test: at most 2 steps ran side by side\n'), result.stdout
     events = {}
     for line in spans.read_text().splitlines():
         name, what, at = line.split()
@@ -172,3 +174,78 @@ def test_a_job_that_needs_the_machine_alone_runs_with_nothing_beside_it(tmp_path
                    for x, y in [('a', 'b'), ('a', 'c'), ('b', 'c')]]
     assert any(overlapping), events  # the shared ones do run side by side
     assert (tmp_path / 'failed.txt').read_text() == ''
+
+
+def load_run_test_jobs():
+    spec = importlib.util.spec_from_file_location('run_test_jobs', os.path.join(ROOT, 'tools', 'run_test_jobs.py'))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_idle_cores_of_two_proc_stat_samples(tmp_path):
+    jobs = load_run_test_jobs()
+    stat = tmp_path / 'stat'
+    stat.write_text('cpu  100 0 50 800 50 0 0 0 0 0\ncpu0 50 0 25 400 25 0 0 0 0 0\n')
+    assert jobs.cpu_sample(str(stat)) == (850, 1000)  # idle and iowait count as idle
+    # Over 200 jiffies on 2 cores, 150 idle: 1.5 cores idle.
+    assert jobs.idle_cores((850, 1000), (1000, 1200), 2) == 1.5
+    assert jobs.idle_cores((850, 1000), (850, 1000), 2) == 0.0
+
+
+class FakeMachine:
+    """A clock and /proc/stat samples under the test's control: `idle` cores of 2 idle from now on."""
+    def __init__(self):
+        self.now, self.idle_jiffies, self.total_jiffies, self.idle = 0.0, 0, 0, 0.0
+
+    def pass_seconds(self, seconds):
+        self.now += seconds
+        self.total_jiffies += int(200 * seconds)  # 2 cores, 100 jiffies a second each
+        self.idle_jiffies += int(100 * self.idle * seconds)
+
+    def sample(self):
+        return self.idle_jiffies, self.total_jiffies
+
+
+def test_auto_runs_two_and_a_third_only_after_a_core_was_idle_for_the_window():
+    jobs = load_run_test_jobs()
+    machine = FakeMachine()
+    side_by_side = jobs.SideBySide('auto', 2, window=3.0, sample=machine.sample, clock=lambda: machine.now)
+    assert side_by_side.room(0) and side_by_side.room(1)
+    side_by_side.started()
+    machine.idle = 1.6
+    machine.pass_seconds(1.0)
+    assert not side_by_side.room(2)  # idle, but not for the whole window yet
+    machine.pass_seconds(2.5)
+    assert side_by_side.room(2)
+    side_by_side.started()
+    assert not side_by_side.room(3)  # never a fourth
+    # A busy core beside the tests (another user's loop): the third does not start.
+    machine.idle = 0.7
+    machine.pass_seconds(10.0)
+    assert not side_by_side.room(2)
+    assert side_by_side.room(1)
+
+
+def test_a_fixed_number_of_jobs_never_grows():
+    jobs = load_run_test_jobs()
+    machine = FakeMachine()
+    machine.idle = 2.0
+    side_by_side = jobs.SideBySide(1, 2, sample=machine.sample, clock=lambda: machine.now)
+    machine.pass_seconds(60.0)
+    assert side_by_side.room(0) and not side_by_side.room(1)
+
+
+def test_a_first_run_starts_the_longest_steps_first_from_the_measured_seconds(tmp_path):
+    """With no durations of its own yet (a fresh clone), the order comes from --first-times."""
+    first_times = tmp_path / 'first.txt'
+    first_times.write_text('# seconds<TAB>step\n5.0\tshort\n90.0\tlong\n30.0\tmiddle\n')
+    lines = ''.join('%s\t0\tshared\techo %s\n' % (name, name) for name in ('short', 'middle', 'long', 'new'))
+    result = subprocess.run(
+        ['/usr/bin/python3', os.path.join(ROOT, 'tools', 'run_test_jobs.py'), '--jobs', '1',
+         '--logs', str(tmp_path / 'logs'), '--times', str(tmp_path / 'times.txt'),
+         '--first-times', str(first_times), '--failed-steps', str(tmp_path / 'failed.txt')],
+        input=lines, stdout=subprocess.PIPE, universal_newlines=True, timeout=60)
+    finished = [line.split()[1] for line in result.stdout.splitlines()[:-1]]
+    assert finished == ['new', 'long', 'middle', 'short'], result.stdout  # unknown steps first
+    assert 'long' in (tmp_path / 'times.txt').read_text()  # the next run uses its own times

@@ -1,18 +1,22 @@
 #!/usr/bin/env python3
 """Runs the slow steps of ./test.sh (the rostests, the workspace pytest) a few at a time.
 
-Usage: run_test_jobs.py --jobs N --logs DIR --times FILE --failed-steps FILE < JOBS
+Usage: run_test_jobs.py --jobs N|auto --logs DIR --times FILE [--first-times FILE] --failed-steps FILE < JOBS
 JOBS has one job per line: `label<TAB>exit codes that mean "ran, results written"<TAB>alone|shared
 <TAB>shell command`, e.g. `rostest fake_tb3/test/rviz.test<TAB>0,1,2<TAB>shared<TAB>rostest ...`.
 Each rostest starts its own master on a free port, so independent .test files may run side by side.
 `alone` jobs run first, one at a time with nothing beside them: tests that measure wall-clock rates
 and latencies (a 30 Hz topic's longest gap), which a second test on a 2-core machine would disturb.
+The others run N at a time; `--jobs auto` runs two, and a third while a whole core has been idle
+for the last few seconds (most steps wait for robots moving in real time, so on a quiet machine a
+third fits; on a shared or loaded one it does not start).
 
 Prints one line per job as it ends (label, seconds, exit status), and under a job that failed the
 lines of its log that say why. Each job's whole output goes to DIR/<label>.log. The durations are
-kept in FILE, so that the next run starts the longest jobs first (on a first run: in the order
-given). A job that ends with any other exit status is written to --failed-steps, one per line: its
-results are not to be trusted (pytest exit 5: it collected no tests).
+kept in FILE, so that the next run starts the longest jobs first (on a first run, those of
+--first-times, measured once on a 2-core machine; jobs unknown to both come first). A job that ends
+with any other exit status is written to --failed-steps, one per line: its results are not to be
+trusted (pytest exit 5: it collected no tests).
 """
 import argparse
 import os
@@ -45,11 +49,51 @@ def read_times(path):
     try:
         with open(path) as lines:
             for line in lines:
+                if line.startswith('#'):
+                    continue
                 seconds, _, label = line.rstrip('\n').partition('\t')
                 times[label] = float(seconds)
     except (OSError, ValueError):
         pass
     return times
+
+
+def cpu_sample(stat='/proc/stat'):
+    """(idle, total) jiffies of all cores together, from the first line of /proc/stat."""
+    with open(stat) as lines:
+        fields = [int(value) for value in lines.readline().split()[1:]]
+    idle = fields[3] + (fields[4] if len(fields) > 4 else 0)  # idle + iowait
+    return idle, sum(fields[:8])  # guest times are already inside user and nice
+
+
+def idle_cores(before, after, cores):
+    """How many cores were idle, on average, between two cpu_sample()s."""
+    total = after[1] - before[1]
+    return cores * (after[0] - before[0]) / total if total > 0 else 0.0
+
+
+class SideBySide:
+    """How many shared jobs may run at once: `jobs`, or with jobs='auto' two, and a third once a
+    whole core was idle over the last `window` seconds (measured afresh after each start)."""
+    AUTO, AUTO_MOST = 2, 3
+
+    def __init__(self, jobs, cores, window=3.0, sample=cpu_sample, clock=time.monotonic):
+        self.auto = jobs == 'auto'
+        self.jobs = self.AUTO if self.auto else max(1, jobs)
+        self.cores, self.window, self.sample, self.clock = cores, window, sample, clock
+        self.started()
+
+    def started(self):
+        """A job started: what it costs at its start must not count as idle time."""
+        self.since = (self.clock(), self.sample())
+
+    def room(self, running):
+        if running < self.jobs:
+            return True
+        if not self.auto or running >= self.AUTO_MOST or self.clock() - self.since[0] < self.window:
+            return False
+        before, self.since = self.since, (self.clock(), self.sample())
+        return idle_cores(before[1], self.since[1], self.cores) >= 1.0
 
 
 def log_name(folder, label):
@@ -58,28 +102,40 @@ def log_name(folder, label):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
-    parser.add_argument('--jobs', type=int, default=2)
+    parser.add_argument('--jobs', default='auto', type=lambda value: value if value == 'auto' else int(value))
     parser.add_argument('--logs', required=True)
     parser.add_argument('--times', required=True)
+    parser.add_argument('--first-times')
     parser.add_argument('--failed-steps', required=True)
     options = parser.parse_args()
     jobs = read_jobs(sys.stdin)
-    known = read_times(options.times)
+    known = read_times(options.first_times) if options.first_times else {}
+    known.update(read_times(options.times))
     # Those that need the machine alone first; then the longest first, so that the last minutes
-    # are not one long job alone (unknown ones first of all: on a first run, the order given).
+    # are not one long job alone (unknown ones first of all).
     jobs.sort(key=lambda job: (not job[2], -known.get(job[0], float('inf'))))
     os.makedirs(options.logs, exist_ok=True)
+    side_by_side = SideBySide(options.jobs, os.cpu_count() or 1)
+    widest = 0
     waiting, running, failed_steps, times = list(jobs), {}, [], dict(known)
     while waiting or running:
-        while waiting and len(running) < max(1, options.jobs):
+        while waiting:
             if running and (waiting[0][2] or any(entry[3] for entry in running.values())):
                 break  # an `alone` job waits for the others to end, and keeps the machine to itself
+            if not side_by_side.room(len(running)):
+                break
             label, codes, alone, command = waiting.pop(0)
             log = open(log_name(options.logs, label), 'w')
             process = subprocess.Popen(['bash', '-c', command], stdout=log, stderr=subprocess.STDOUT,
                                        stdin=subprocess.DEVNULL)
             running[process.pid] = (process, label, codes, alone, log, time.monotonic())
-        pid, status = os.wait()
+            side_by_side.started()
+            widest = max(widest, len(running))
+        # With jobs waiting for an idle core, look again every half second.
+        pid, status = os.waitpid(-1, os.WNOHANG if side_by_side.auto and waiting else 0)
+        if pid == 0:
+            time.sleep(0.5)
+            continue
         if pid not in running:
             continue
         process, label, codes, _, log, start = running.pop(pid)
@@ -99,6 +155,7 @@ def main():
         if code not in codes:
             failed_steps.append('%s (exit %d: its results cannot be trusted; log %s)'
                                 % (label, code, log_name(options.logs, label)))
+    print('test: at most %d steps ran side by side' % widest, flush=True)
     with open(options.failed_steps, 'w') as out:
         out.writelines(step + '\n' for step in failed_steps)
     with open(options.times, 'w') as out:
