@@ -18,6 +18,7 @@ from course_testing.waiting import wait_until
 
 test_helpers('ros_exercises')
 import figures                     # noqa: E402  (ros_exercises' test helpers: polygon, distances_to_polygon)
+import printed_poses               # noqa: E402  (summary of the printed poses' judgement)
 import ros_exercises_testing       # noqa: E402  (turtle_poses, pose_array)
 import test_listener_circle        # noqa: E402  (assert_printed_poses_were_published, assert_circle)
 import test_publisher_subscriber   # noqa: E402  (rate_of, assert_cycles_through)
@@ -47,15 +48,14 @@ def _printed(run, pattern):
     return [match.groups() for match in (re.search(pattern, line) for line in run.lines) if match]
 
 
-def _since_heard(printed, poses):
-    """The printed (x, y, theta) from the one of the first pose the grader heard on: what a node
-    printed before the grader was connected was never heard, though turtlesim published it."""
-    first = poses.messages()[:1]
-    for index, line in enumerate(printed):
-        if first and max(abs(float(value) - published) for value, published in
-                         zip(line, (first[0].x, first[0].y, first[0].theta))) < 2e-6:
-            return printed[index:]
-    return printed
+def _printed_poses(printed, poses):
+    """The course test's check that the printed poses are those turtlesim published: (what is
+    wrong or None, a summary of what was printed)."""
+    try:
+        judgement = test_listener_circle.assert_printed_poses_were_published(unittest.TestCase(), printed, poses)
+    except AssertionError as error:
+        return str(error), None
+    return None, printed_poses.summary(judgement)
 
 
 def _tail(run, count=2):
@@ -157,10 +157,10 @@ def check_listener(session):
         moved = exercise.wait(lambda: any(float(x) > 6.0 for x, _, _ in exercise.printed(line)), 10)
         timer.shutdown()
         printed = exercise.printed(line)
-        wrong = _failure(test_listener_circle.assert_printed_poses_were_published, _since_heard(printed, poses), poses)
+        wrong, seen = _printed_poses(printed, poses)
         if not moved:
             wrong = 'the printed pose did not follow the turtle driven to x > 6 (last printed %s)' % (printed[-1],)
-        seen = wrong or '%d poses printed' % len(printed)
+        seen = wrong or seen
         return {'listener_prints_pose': Outcome(not wrong, 'expected the pose turtlesim publishes, printed as '
                                                 'the turtle moves; seen %s' % seen)}
     finally:
@@ -181,14 +181,13 @@ def check_circle(session):
             return {'circle': Outcome(False, exercise.nothing('drive turtle1'))}
         # turtle1 starts at the middle facing +x: the centre is 1 m to its left.
         centre = (test_listener_circle.TURTLE1_START[0], test_listener_circle.TURTLE1_START[1] + 1.0)
-        wrong = _failure(test_listener_circle.assert_circle, poses, centre, 1.0)
+        wrong, seen = _failure(test_listener_circle.assert_circle, poses, centre, 1.0), None
         if not wrong:
             printed = exercise.printed(r'Turtle subscriber@\[%s, %s, %s\]' % (NUMBER, NUMBER, NUMBER))
-            wrong = (_failure(test_listener_circle.assert_printed_poses_were_published, _since_heard(printed, poses),
-                              poses)
-                     if printed else 'no line `Turtle subscriber@[x, y, theta]` printed')
+            wrong, seen = (_printed_poses(printed, poses) if printed
+                           else ('no line `Turtle subscriber@[x, y, theta]` printed', None))
         return {'circle': Outcome(not wrong, 'expected a circle of radius 1 m around (%.2f, %.2f), with the pose '
-                                  'printed; seen %s' % (centre[0], centre[1], wrong or 'it'))}
+                                  'printed; seen %s' % (centre[0], centre[1], wrong or 'it: ' + seen))}
     finally:
         exercise.stop()
         poses.close()
