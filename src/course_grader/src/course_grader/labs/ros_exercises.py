@@ -200,16 +200,24 @@ def _turtles():
 def check_spawn_kill(session):
     criterion = session.rubric.criterion('spawn_kill')
     poses = ros_exercises_testing.turtle_poses('robotics')
-    exercise = Exercise(session, criterion, 'exercise4.log')
+    # --screen: turtlesim's own log lines come with the launch's output, as in the terminal of
+    # `rosrun turtlesim turtlesim_node`; its window at the end is the picture.
+    exercise = Exercise(session, criterion, 'exercise4.log', '--screen', picture='spawn_kill.png')
     try:
         if not exercise.wait(lambda: poses.count(), session.rubric.limits['start_seconds']):
-            return {'spawn_kill': Outcome(False, exercise.nothing('spawn the turtle robotics'))}
-        pose = poses.latest()
-        gone = exercise.wait(lambda: 'turtle1' not in _turtles(), 5)
-        at_start = max(abs(a - b) for a, b in zip((pose.x, pose.y, pose.theta), SPAWN_START)) <= 1e-5
-        return {'spawn_kill': Outcome(at_start and gone, 'expected robotics at (1.00, 1.00, 0.00) and turtle1 '
-                                      'killed; seen robotics at (%.2f, %.2f, %.2f), turtle1 %s' % (
-                                          pose.x, pose.y, pose.theta, 'killed' if gone else 'still there'))}
+            spawned = Outcome(False, exercise.nothing('spawn the turtle robotics'))
+        else:
+            pose = poses.latest()
+            gone = exercise.wait(lambda: 'turtle1' not in _turtles(), 5)
+            at_start = max(abs(a - b) for a, b in zip((pose.x, pose.y, pose.theta), SPAWN_START)) <= 1e-5
+            spawned = Outcome(at_start and gone, 'expected robotics at (1.00, 1.00, 0.00) and turtle1 killed; seen '
+                              'robotics at (%.2f, %.2f, %.2f), turtle1 %s' % (
+                                  pose.x, pose.y, pose.theta, 'killed' if gone else 'still there'))
+        cleared = exercise.wait(lambda: exercise.printed(r'(Clearing turtlesim\.)\s*$'), 5)
+        return {'spawn_kill': spawned,
+                'clear': Outcome(cleared, 'expected `%s` to clear the background with /clear; seen %s' % (
+                    exercise.command, 'turtlesim print `Clearing turtlesim.`' if cleared else
+                    'no line `Clearing turtlesim.` from turtlesim: call its service /clear (std_srvs/Empty)'))}
     finally:
         exercise.stop()
         poses.close()
@@ -246,7 +254,7 @@ def run_checks(session):
         (check_publisher_subscriber, 'exercise1.launch', ['publisher_rate', 'subscriber_prints']),
         (check_listener, 'exercise2.launch', ['listener_prints_pose']),
         (check_circle, 'exercise3.launch', ['circle']),
-        (check_spawn_kill, 'exercise4.launch', ['spawn_kill']),
+        (check_spawn_kill, 'exercise4.launch', ['spawn_kill', 'clear']),
         (lambda s: check_shape(s, 'square'), 'exercise5_square.launch', ['square']),
         (lambda s: check_shape(s, 'triangle'), 'exercise5_triangle.launch', ['triangle'])])
 
