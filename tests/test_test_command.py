@@ -6,7 +6,9 @@ no catkin on it (as on a fresh machine before tools/setup.sh has installed it).
 """
 import importlib.util
 import os
+import re
 import shutil
+import signal
 import subprocess
 
 import pytest
@@ -249,3 +251,28 @@ def test_a_first_run_starts_the_longest_steps_first_from_the_measured_seconds(tm
     finished = [line.split()[1] for line in result.stdout.splitlines()[:-1]]
     assert finished == ['new', 'long', 'middle', 'short'], result.stdout  # unknown steps first
     assert 'long' in (tmp_path / 'times.txt').read_text()  # the next run uses its own times
+
+
+def ignored_signals(status_text):
+    """The signal numbers a /proc/PID/status text says are ignored."""
+    mask = int(re.search(r'^SigIgn:\s*([0-9a-f]+)$', status_text, re.M).group(1), 16)
+    return {number for number in range(1, 65) if mask & (1 << (number - 1))}
+
+
+def test_jobs_get_ctrl_c_back_when_the_test_command_runs_in_the_background(tmp_path):
+    """A background shell ignores SIGINT and SIGQUIT, and its programs inherit that; the jobs do not."""
+    job, runner = tmp_path / 'job.txt', tmp_path / 'runner.txt'
+
+    def as_a_background_job():
+        for number in (signal.SIGINT, signal.SIGQUIT):
+            signal.signal(number, signal.SIG_IGN)
+
+    result = subprocess.run(
+        ['/usr/bin/python3', os.path.join(ROOT, 'tools', 'run_test_jobs.py'), '--jobs', '1',
+         '--logs', str(tmp_path / 'logs'), '--times', str(tmp_path / 'times.txt'),
+         '--failed-steps', str(tmp_path / 'failed.txt')],
+        input='status\t0\tshared\tcat /proc/self/status > %s; cat /proc/$PPID/status > %s\n' % (job, runner),
+        stdout=subprocess.PIPE, universal_newlines=True, timeout=60, preexec_fn=as_a_background_job)
+    assert result.returncode == 0, result.stdout
+    assert {signal.SIGINT, signal.SIGQUIT} <= ignored_signals(runner.read_text())  # as it was started
+    assert not {signal.SIGINT, signal.SIGQUIT} & ignored_signals(job.read_text())

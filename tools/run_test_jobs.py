@@ -21,6 +21,7 @@ trusted (pytest exit 5: it collected no tests).
 import argparse
 import os
 import re
+import signal
 import subprocess
 import sys
 import time
@@ -96,6 +97,16 @@ class SideBySide:
         return idle_cores(before[1], self.since[1], self.cores) >= 1.0
 
 
+def default_ctrl_c():
+    """In a job, before it starts: SIGINT and SIGQUIT as in a terminal. When test.sh runs in the
+    background (`./test.sh &`, nohup in a script, a CI runner), its shell ignores both and every
+    program inherits that: the tests stop roscore and roslaunch with SIGINT, which they then ignore
+    until the test's timeout kills them (tests/network/ took 181 s instead of 90). The same as
+    course_testing.processes.restore_ctrl_c, which this file cannot import (it runs without ROS)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.signal(signal.SIGQUIT, signal.SIG_DFL)
+
+
 def log_name(folder, label):
     return os.path.join(folder, re.sub(r'[^A-Za-z0-9_.-]+', '_', label) + '.log')
 
@@ -127,7 +138,7 @@ def main():
             label, codes, alone, command = waiting.pop(0)
             log = open(log_name(options.logs, label), 'w')
             process = subprocess.Popen(['bash', '-c', command], stdout=log, stderr=subprocess.STDOUT,
-                                       stdin=subprocess.DEVNULL)
+                                       stdin=subprocess.DEVNULL, preexec_fn=default_ctrl_c)
             running[process.pid] = (process, label, codes, alone, log, time.monotonic())
             side_by_side.started()
             widest = max(widest, len(running))

@@ -17,6 +17,7 @@ from concurrent.futures import ThreadPoolExecutor
 from course_grader import reports, results, rubric as rubrics
 from course_grader.session import PROCESS_GROUPS
 from course_grader.submission import SubmissionError, find_package, student_name, unpack
+from course_testing import processes
 
 MARKER = '.course_grader'            # in --out: the folder is the grader's (it may empty it)
 COURSE_IN_IMAGE = '/home/student/course'
@@ -260,6 +261,7 @@ class Grader:
 
 def main(argv=None):
     started = time.monotonic()
+    processes.restore_ctrl_c()  # grading must not depend on how the teacher started ./grade.sh
     try:
         args = parse_args(sys.argv[1:] if argv is None else argv)
         rubric = rubrics.load(args.rubric or args.lab)

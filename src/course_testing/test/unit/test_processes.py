@@ -1,3 +1,4 @@
+import signal
 import socket
 import subprocess
 import sys
@@ -46,3 +47,38 @@ def test_a_free_port_can_be_listened_on():
     with socket.socket() as server:
         server.bind(('127.0.0.1', port))
         server.listen()
+
+
+# A program started as a background job is (SIGINT and SIGQUIT ignored), which calls restore_ctrl_c and
+# then starts a roslaunch stand-in that relies on the default SIGINT (KeyboardInterrupt).
+RESTORES_THEN_STARTS = '''
+import subprocess, sys
+from course_testing.processes import restore_ctrl_c
+restore_ctrl_c()
+child = subprocess.Popen([sys.executable, '-c', "import time; print('ready', flush=True); time.sleep(60)"],
+                         stdout=subprocess.PIPE, universal_newlines=True)
+child.stdout.readline()
+print(open('/proc/%d/status' % child.pid).read(), flush=True)
+child.kill()
+'''
+
+
+def ignored_signals(status_text):
+    mask = next(int(line.split()[1], 16) for line in status_text.splitlines() if line.startswith('SigIgn:'))
+    return {number for number in range(1, 65) if mask & (1 << (number - 1))}
+
+
+def test_restore_ctrl_c_gives_the_programs_started_after_it_the_default_sigint():
+    def as_a_background_job():
+        for number in (signal.SIGINT, signal.SIGQUIT):
+            signal.signal(number, signal.SIG_IGN)
+
+    result = subprocess.run([sys.executable, '-c', RESTORES_THEN_STARTS], stdout=subprocess.PIPE,
+                            universal_newlines=True, timeout=30, preexec_fn=as_a_background_job)
+    assert result.returncode == 0
+    assert not {signal.SIGINT, signal.SIGQUIT} & ignored_signals(result.stdout)
+    # Without it, the program inherits the background job's ignored SIGINT.
+    unrestored = RESTORES_THEN_STARTS.replace('restore_ctrl_c()\n', '')
+    result = subprocess.run([sys.executable, '-c', unrestored], stdout=subprocess.PIPE,
+                            universal_newlines=True, timeout=30, preexec_fn=as_a_background_job)
+    assert signal.SIGINT in ignored_signals(result.stdout)

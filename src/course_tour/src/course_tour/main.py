@@ -9,6 +9,7 @@ import traceback
 
 from course_tour.labs import LABS
 from course_tour.session import Session
+from course_testing.processes import restore_ctrl_c
 
 
 def parse_args(argv):
@@ -28,6 +29,7 @@ def parse_args(argv):
 
 def main(argv=None):
     args = parse_args(sys.argv[1:] if argv is None else argv)
+    restore_ctrl_c()  # each lab is stopped with SIGINT, also when ./demo.sh runs in the background
     chosen = [lab for lab in LABS if not args.labs or lab.name in args.labs]
     output = args.output or os.path.join(
         os.getcwd(), 'output', 'tour-' + datetime.datetime.now().strftime('%Y%m%d-%H%M%S'))
