@@ -6,12 +6,13 @@ no catkin on it (as on a fresh machine before tools/setup.sh has installed it).
 """
 import importlib.util
 import os
-import re
 import shutil
 import signal
 import subprocess
 
 import pytest
+
+from course_testing.processes import ignored_signals
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # What test.sh may run before tools/setup.sh has installed anything: a fresh Debian's base tools.
@@ -251,12 +252,6 @@ def test_a_first_run_starts_the_longest_steps_first_from_the_measured_seconds(tm
     finished = [line.split()[1] for line in result.stdout.splitlines()[:-1]]
     assert finished == ['new', 'long', 'middle', 'short'], result.stdout  # unknown steps first
     assert 'long' in (tmp_path / 'times.txt').read_text()  # the next run uses its own times
-
-
-def ignored_signals(status_text):
-    """The signal numbers a /proc/PID/status text says are ignored."""
-    mask = int(re.search(r'^SigIgn:\s*([0-9a-f]+)$', status_text, re.M).group(1), 16)
-    return {number for number in range(1, 65) if mask & (1 << (number - 1))}
 
 
 def test_jobs_get_ctrl_c_back_when_the_test_command_runs_in_the_background(tmp_path):

@@ -27,6 +27,12 @@ def restore_ctrl_c():
     signal.signal(signal.SIGQUIT, signal.SIG_DFL)
 
 
+def ignored_signals(status_text):
+    """The signal numbers a /proc/PID/status text (its SigIgn line) says the process ignores."""
+    mask = next(int(line.split()[1], 16) for line in status_text.splitlines() if line.startswith('SigIgn:'))
+    return {number for number in range(1, 65) if mask & (1 << (number - 1))}
+
+
 def stop_process_group(process, timeout=15.0):
     """SIGINT a process started with start_new_session=True and everything it started (as Ctrl-C
     in a terminal would, so ROS nodes shut down cleanly and save what they save at shutdown);

@@ -3,7 +3,7 @@ import socket
 import subprocess
 import sys
 
-from course_testing.processes import free_port, stop_process_group
+from course_testing.processes import free_port, ignored_signals, stop_process_group
 
 TRAPS_SIGINT = '''
 import signal, sys, time
@@ -61,11 +61,6 @@ child.stdout.readline()
 print(open('/proc/%d/status' % child.pid).read(), flush=True)
 child.kill()
 '''
-
-
-def ignored_signals(status_text):
-    mask = next(int(line.split()[1], 16) for line in status_text.splitlines() if line.startswith('SigIgn:'))
-    return {number for number in range(1, 65) if mask & (1 << (number - 1))}
 
 
 def test_restore_ctrl_c_gives_the_programs_started_after_it_the_default_sigint():
