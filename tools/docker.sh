@@ -4,7 +4,9 @@
 #                               own dockerd (data in $COURSE_DOCKER_ROOT; overlay2, or vfs where a trial
 #                               container cannot run on overlay2) and stops it, by PID, on EXIT
 #   course_docker_image SUITE   builds ros-course:SUITE from docker/Dockerfile (making the debian:SUITE
-#                               base image with debootstrap when missing) and prints the image's name
+#                               base image with debootstrap when missing) and prints the image's name;
+#                               COURSE_IMAGE_NAME=name gives the image another name than ros-course
+#                               (two checkouts building side by side on one engine)
 # The Debian archive (and apt's proxy, if any) are the ones this machine's own apt uses, so a machine
 # behind a mirror or a proxy makes its images the same way. Needs root the first time (installs
 # docker.io and debootstrap).
@@ -134,7 +136,7 @@ _course_docker_base_image() {
 }
 
 course_docker_image() {
-    local suite="${1:-trixie}" image="ros-course:${1:-trixie}" proxy
+    local suite="${1:-trixie}" image="${COURSE_IMAGE_NAME:-ros-course}:${1:-trixie}" proxy
     if ! docker image inspect "debian:$suite" >/dev/null 2>&1; then
         _course_docker_base_image "$suite" || return 1
     fi
