@@ -11,8 +11,9 @@ import pytest
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PACKAGES = {
     'turtlesim': ('src/turtlesim/src/turtlesim',
-                  {'node', 'window', 'teleop_key', 'draw_square', 'mimic'}),
+                  {'node', 'window', 'teleop_key', 'draw_square', 'mimic', 'scene_topic'}),
     'fake_tb3': ('src/fake_tb3/src/fake_tb3', {'node', 'turtlebot3_drive_node'}),
+    'course_web': ('src/course_web/src/course_web', {'ros_view', 'follow_master'}),
 }
 # Run in a fresh interpreter: a finder first on sys.meta_path refuses every ROS module.
 IMPORT_WITHOUT_ROS = r'''

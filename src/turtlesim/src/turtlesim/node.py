@@ -25,6 +25,7 @@ from turtlesim import picture, shared_poll
 from turtlesim.holdings import (LOW_FILE_LIMIT, Holdings, capacity_note, open_file_count, open_file_limit,
                                 raise_open_file_limit, spawn_refusal)
 from turtlesim.msg import Color, Pose
+from turtlesim.scene_topic import SceneTopic
 from turtlesim.srv import (Kill, KillResponse, SetPen, SetPenResponse, Spawn, SpawnResponse,
                            TeleportAbsolute, TeleportAbsoluteResponse, TeleportRelative,
                            TeleportRelativeResponse)
@@ -123,6 +124,7 @@ class TurtlesimNode:
                 rospy.set_param('~background_' + channel, value)
         self.world = World(RosLog, self.read_background(), name_key=rospy.resolve_name)
         self.world_lock = threading.Lock()  # held while the world changes and while it is copied
+        self.scene_topic = SceneTopic(self.world)  # ~scene, for a web viewer
         self._requests = collections.deque()
         self._registry_lock = threading.Lock()  # one spawn/kill/reset changes the interfaces at a time
         self.interfaces = {}  # turtle name -> TurtleInterface; replaced as a whole, never mutated
@@ -176,6 +178,7 @@ class TurtlesimNode:
                 interface = interfaces.get(turtle.name)
                 if interface is not None:
                     interface.publish(turtle)
+            self.scene_topic.after_tick()
             next_tick += TICK_SECONDS
         self._fail_pending_requests()
 

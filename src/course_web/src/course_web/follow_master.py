@@ -1,0 +1,41 @@
+"""In the course's Docker image: the page of whichever lab runs, with no step of the student's.
+
+Waits for a ROS master (ROS_MASTER_URI), runs the view node on it listening on every address of
+the container (so `docker run -p 127.0.0.1:8080:8080` reaches it), and stops it when that master
+goes away; the next lab's master gets a new one. The page reconnects by itself.
+"""
+import os
+import subprocess
+import sys
+import time
+
+import rosgraph
+
+from course_testing.processes import stop_process_group
+
+POLL = 0.5  # s
+VIEW_NODE = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'nodes', 'view')
+
+
+def master_online():
+    try:
+        return rosgraph.is_master_online()
+    except Exception:  # a malformed ROS_MASTER_URI is as good as no master
+        return False
+
+
+def main(argv=None):
+    args = list(sys.argv[1:] if argv is None else argv)
+    port = args[0] if args else os.environ.get('COURSE_WEB_PORT', '8080')
+    while True:
+        while not master_online():
+            time.sleep(POLL)
+        view = subprocess.Popen([sys.executable, VIEW_NODE, '__name:=course_web', '_host:=0.0.0.0',
+                                 '_port:=%s' % port], start_new_session=True)
+        try:
+            while view.poll() is None and master_online():
+                time.sleep(POLL)
+        finally:
+            stop_process_group(view, timeout=5.0)
+        if view.returncode not in (0, -2):
+            time.sleep(5 * POLL)  # it failed by itself (port taken?): its log said why

@@ -1,0 +1,157 @@
+"""The web server: the page's files and one websocket per page (tornado; no ROS here).
+
+Every file the page needs is in this package's web/ folder: no CDN, no build step. A page's
+websocket gets frames (frames.Scenes) and sends key presses, which go to `on_key`. Frames are sent
+one at a time: the next is made only when the previous one has been handed to the socket, so a slow
+or stalled page skips states and nothing queues up for it.
+"""
+import logging
+import os
+import socket
+import threading
+import time
+
+import tornado.httpserver
+import tornado.ioloop
+import tornado.netutil
+import tornado.web
+import tornado.websocket
+
+from course_web.frames import NEW_PAGE
+from course_web.origin import host_allowed, origin_allowed
+from course_web.pacing import KeyBudget
+from course_web.protocol import MAX_TRANSPORT_BYTES, ProtocolError, parse_client_message
+
+WEB_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'web')
+SEND_BUFFER_BYTES = 64 * 1024  # what the kernel may hold for a page that does not read
+# Tornado logs a line per request and a traceback per bad websocket frame: our own one line is enough.
+for _name in ('tornado.access', 'tornado.application', 'tornado.general'):
+    logging.getLogger(_name).setLevel(logging.CRITICAL)
+
+
+class _HostChecked:
+    def prepare(self):
+        if not host_allowed(self.request.host, self.application.settings['allowed_hosts']):
+            self.application.settings['log']('course_web: refused a request for Host %r (not a name of '
+                                             'this machine; see ~allowed_hosts)' % self.request.host)
+            raise tornado.web.HTTPError(403)
+
+
+class PageFiles(_HostChecked, tornado.web.StaticFileHandler):
+    def set_extra_headers(self, path):
+        self.set_header('Cache-Control', 'no-cache')
+        self.set_header('X-Frame-Options', 'DENY')
+        self.set_header('Content-Security-Policy', "default-src 'self'; img-src 'self' data:; "
+                        "connect-src 'self'; frame-ancestors 'none'")
+
+
+class PageSocket(_HostChecked, tornado.websocket.WebSocketHandler):
+    def initialize(self, server):
+        self.server = server
+        self.cursor = NEW_PAGE
+        self.sending = False
+        self.budget = KeyBudget()
+        self.closing_reason = None
+
+    def check_origin(self, origin):
+        if origin_allowed(origin, self.request.host, self.application.settings['allowed_hosts']):
+            return True
+        self.server.log('course_web: refused a websocket from Origin %r (this page is %r)'
+                        % (origin, self.request.host))
+        return False
+
+    def open(self):
+        try:
+            self.stream.socket.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, SEND_BUFFER_BYTES)
+            self.stream.socket.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        except (OSError, AttributeError):
+            pass
+        self.server.pages.add(self)
+        self.offer()
+
+    def on_message(self, message):
+        try:
+            key = parse_client_message(message)
+        except ProtocolError as error:
+            self.refuse(str(error), 1003 if isinstance(message, bytes) else 1008)
+            return
+        if self.budget.allow(time.monotonic()):
+            self.server.on_key(key)
+
+    def refuse(self, reason, code):
+        self.closing_reason = reason
+        self.server.log('course_web: closed a page from %s: %s' % (self.request.remote_ip, reason))
+        self.close(code, reason[:100])
+
+    def on_close(self):
+        self.server.pages.discard(self)
+        if self.close_code == 1009 and self.closing_reason is None:
+            self.server.log('course_web: closed a page from %s: message larger than %d bytes'
+                            % (self.request.remote_ip, MAX_TRANSPORT_BYTES))
+
+    def offer(self):
+        """Send the page what changed, unless a frame to it is still on its way."""
+        if self.sending or self.ws_connection is None:
+            return
+        text, self.cursor = self.server.scenes.frame_for(self.cursor)
+        if text is None:
+            return
+        self.sending = True
+        try:
+            future = self.write_message(text)
+        except tornado.websocket.WebSocketClosedError:
+            return
+        future.add_done_callback(self._sent)
+
+    def _sent(self, future):
+        self.sending = False
+        if future.exception() is None:
+            self.offer()
+
+
+class ViewServer:
+    """Serves the page and pushes frames; notify() may be called from any thread."""
+
+    def __init__(self, scenes, on_key, log, allowed_hosts=()):
+        self.scenes = scenes
+        self.on_key = on_key
+        self.log = log
+        self.pages = set()
+        self.loop = None
+        self._flush_pending = False
+        self._flush_lock = threading.Lock()
+        self.app = tornado.web.Application([
+            (r'/ws', PageSocket, {'server': self}),
+            (r'/(.*)', PageFiles, {'path': os.path.normpath(WEB_DIR), 'default_filename': 'index.html'}),
+        ], websocket_max_message_size=MAX_TRANSPORT_BYTES, allowed_hosts=tuple(allowed_hosts),
+            log=log, websocket_ping_interval=10, websocket_ping_timeout=30)
+        self.http = None
+
+    def listen(self, port, address):
+        """Bind (in the thread that will run the loop); returns the port (useful with port 0)."""
+        self.loop = tornado.ioloop.IOLoop.current()
+        self.http = tornado.httpserver.HTTPServer(self.app, max_body_size=MAX_TRANSPORT_BYTES)
+        sockets = tornado.netutil.bind_sockets(port, address)
+        self.http.add_sockets(sockets)
+        return sockets[0].getsockname()[1]
+
+    def notify(self):
+        """Something changed: offer every page a frame (soon, in the loop's thread)."""
+        with self._flush_lock:
+            if self._flush_pending or self.loop is None:
+                return
+            self._flush_pending = True
+        self.loop.add_callback(self._flush)
+
+    def _flush(self):
+        with self._flush_lock:
+            self._flush_pending = False
+        for page in list(self.pages):
+            page.offer()
+
+    def stop(self):
+        """In the loop's thread: close the listening sockets and every page."""
+        if self.http is not None:
+            self.http.stop()
+        for page in list(self.pages):
+            page.close(1001, 'server stopping')
