@@ -52,6 +52,7 @@ class PageSocket(_HostChecked, tornado.websocket.WebSocketHandler):
         self.sending = False
         self.budget = KeyBudget()
         self.closing_reason = None
+        self.frames_sent = 0
 
     def check_origin(self, origin):
         if origin_allowed(origin, self.request.host, self.application.settings['allowed_hosts']):
@@ -61,11 +62,9 @@ class PageSocket(_HostChecked, tornado.websocket.WebSocketHandler):
         return False
 
     def open(self):
-        try:
-            self.stream.socket.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, SEND_BUFFER_BYTES)
-            self.stream.socket.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
-        except (OSError, AttributeError):
-            pass
+        connection = self.ws_connection.stream.socket
+        connection.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, SEND_BUFFER_BYTES)
+        connection.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         self.server.pages.add(self)
         self.offer()
 
@@ -85,9 +84,11 @@ class PageSocket(_HostChecked, tornado.websocket.WebSocketHandler):
 
     def on_close(self):
         self.server.pages.discard(self)
-        if self.close_code == 1009 and self.closing_reason is None:
-            self.server.log('course_web: closed a page from %s: message larger than %d bytes'
-                            % (self.request.remote_ip, MAX_TRANSPORT_BYTES))
+        if self.close_code is None and self.closing_reason is None:
+            # No closing handshake: the web library dropped it for a message larger than
+            # MAX_TRANSPORT_BYTES (it does not say so), or the network went away.
+            self.server.log('course_web: closed a page from %s: a message larger than %d bytes, '
+                            'or the connection broke' % (self.request.remote_ip, MAX_TRANSPORT_BYTES))
 
     def offer(self):
         """Send the page what changed, unless a frame to it is still on its way."""
@@ -97,6 +98,7 @@ class PageSocket(_HostChecked, tornado.websocket.WebSocketHandler):
         if text is None:
             return
         self.sending = True
+        self.frames_sent += 1
         try:
             future = self.write_message(text)
         except tornado.websocket.WebSocketClosedError:
@@ -105,7 +107,7 @@ class PageSocket(_HostChecked, tornado.websocket.WebSocketHandler):
 
     def _sent(self, future):
         self.sending = False
-        if future.exception() is None:
+        if not future.cancelled() and future.exception() is None:
             self.offer()
 
 
