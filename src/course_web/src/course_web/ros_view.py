@@ -11,6 +11,7 @@ import math
 import signal
 import sys
 import threading
+import xmlrpc.client
 
 import rosgraph
 import rospy
@@ -30,6 +31,13 @@ from turtlebot3_teleop.key_commands import KeyCommands, speed_limits
 
 PRESENCE_PERIOD = 0.5  # s between looks at which simulators run
 TB3_PUBLISH_PERIOD = 0.1  # s, as turtlebot3_teleop_key
+
+
+class _QuickTransport(xmlrpc.client.Transport):
+    def make_connection(self, host):
+        connection = super().make_connection(host)
+        connection.timeout = 2.0
+        return connection
 
 
 def _twist(linear, angular):
@@ -100,9 +108,13 @@ class RosView:
         self.server.notify()
 
     def _node_uri(self, name):
+        """The node's URI if it runs: registered with the master and answering there (a node
+        killed without unregistering, as turtlesim by Ctrl-C, stays registered)."""
         try:
-            return self.master.lookupNode(name)
-        except Exception:  # unknown node, or no master at the moment
+            uri = self.master.lookupNode(name)
+            xmlrpc.client.ServerProxy(uri, transport=_QuickTransport()).getPid(rospy.get_name())
+            return uri
+        except Exception:  # unknown node, no master at the moment, or a node that is gone
             return None
 
     def _watch_simulators(self):
