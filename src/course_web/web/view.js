@@ -12,7 +12,7 @@
                           ['#5a641e', '#aab43c'], ['#463c6e', '#8c78b4'], ['#823228', '#d26e50']];
 
   // What tests and the benchmark read: frames received and, per drawn pose, when it was drawn.
-  const stats = {frames: 0, turtlesimFrames: 0, tb3Frames: 0, drawn: [], tb3ToPixel: null};
+  const stats = {frames: 0, turtlesimFrames: 0, tb3Frames: 0, scans: 0, drawn: [], tb3ToPixel: null};
   window.courseWeb = stats;
   const clock = () => performance.timeOrigin + performance.now();
   function recordDrawn(what, x) {
@@ -207,6 +207,7 @@
     ctx.beginPath(); ctx.moveTo(ax, ay); ctx.lineTo(bx, by); ctx.stroke();
   }
 
+  let lastRecorded = null;
   function tb3Part(part) {
     $('tb3').hidden = !part.present;
     if (!part.present) { tb.world = null; tb.trail = []; tb.scan = []; tb.pose = null; return; }
@@ -214,7 +215,7 @@
     if (part.trail_reset) tb.trail = [];
     const from = tb.trail.length;
     for (const point of part.trail) tb.trail.push(point);
-    if (part.scan) tb.scan = part.scan;
+    if (part.scan) { tb.scan = part.scan; stats.scans++; }
     if (part.pose) {
       tb.pose = part.pose;
       const [x, y, yaw] = part.pose, [v, w] = part.speed;
@@ -226,7 +227,10 @@
     if (!tb.view || (tb.pose && !wanted(tb.view, tb.pose[0], tb.pose[1]))) chooseView();
     else if (tb.trail.length > from) drawTrail(from);
     drawTb3();
-    if (part.pose) recordDrawn('tb3', part.pose[0]);
+    if (part.pose && !(lastRecorded && part.pose.every((v, i) => v === lastRecorded[i]))) {
+      recordDrawn('tb3', part.pose[0]);  // a new pose, not a scan beside the same pose
+      lastRecorded = part.pose;
+    }
   }
 
   // ---------------------------------------------------------------- keys
