@@ -24,6 +24,20 @@ def master_online():
         return False
 
 
+def view_environment():
+    """Our environment without ros_loopback's preloaded library, which would move the page's
+    0.0.0.0 to loopback, out of `docker run -p`'s reach. (The node's ROS sockets stay on loopback:
+    rospy binds them there itself while ROS_HOSTNAME is localhost.)"""
+    env = dict(os.environ)
+    kept = [entry for entry in env.get('LD_PRELOAD', '').split(':')
+            if entry and not entry.endswith('/libros_loopback.so')]
+    if kept:
+        env['LD_PRELOAD'] = ':'.join(kept)
+    else:
+        env.pop('LD_PRELOAD', None)
+    return env
+
+
 def main(argv=None):
     args = list(sys.argv[1:] if argv is None else argv)
     port = args[0] if args else os.environ.get('COURSE_WEB_PORT', '8080')
@@ -31,7 +45,7 @@ def main(argv=None):
         while not master_online():
             time.sleep(POLL)
         view = subprocess.Popen([sys.executable, VIEW_NODE, '__name:=course_web', '_host:=0.0.0.0',
-                                 '_port:=%s' % port], start_new_session=True)
+                                 '_port:=%s' % port], start_new_session=True, env=view_environment())
         try:
             while view.poll() is None and master_online():
                 time.sleep(POLL)
