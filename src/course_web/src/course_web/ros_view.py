@@ -40,6 +40,10 @@ class _QuickTransport(xmlrpc.client.Transport):
         return connection
 
 
+def _refuse_constant(name):
+    raise ValueError('%s in a ~scene message' % name)
+
+
 def _twist(linear, angular):
     command = Twist()
     command.linear.x, command.angular.z = linear, angular
@@ -83,7 +87,7 @@ class RosView:
 
     def on_scene(self, message):
         try:
-            data = json.loads(message.data)
+            data = json.loads(message.data, parse_constant=_refuse_constant)
             with self.scenes.lock:
                 complete = self.scenes.turtlesim.apply(data)
         except (ValueError, SceneError) as error:

@@ -47,10 +47,20 @@ def parse_op(op):
     raise SceneError('unknown drawing operation %r' % (op,))
 
 
-def parse_turtle(turtle):
-    if not (isinstance(turtle, list) and len(turtle) == 5 and isinstance(turtle[0], str)):
-        raise SceneError('expected [name, x, y, theta, icon], got %r' % (turtle,))
-    return [turtle[0]] + [float(_number(v)) for v in turtle[1:4]] + [int(_number(turtle[4]))]
+_REAL = (int, float)
+
+
+def check_turtles(turtles):
+    """The turtles list itself, once each entry is checked to be [name, x, y, theta, icon]: one
+    tight loop, as 100 turtles come 62.5 times a second."""
+    if not isinstance(turtles, list):
+        raise SceneError('expected a list of turtles, got %r' % (turtles,))
+    for turtle in turtles:
+        if not (type(turtle) is list and len(turtle) == 5 and type(turtle[0]) is str
+                and type(turtle[1]) in _REAL and type(turtle[2]) in _REAL
+                and type(turtle[3]) in _REAL and type(turtle[4]) is int):
+            raise SceneError('expected [name, x, y, theta, icon], got %r' % (turtle,))
+    return turtles
 
 
 def decode_canvas(canvas):
@@ -111,7 +121,7 @@ class TurtlesimScene:
             elif self.seq is None or not self.present or message['seq'] != self.seq + 1:
                 return False
             ops = [parse_op(op) for op in message.get('ops', [])]
-            turtles = [parse_turtle(turtle) for turtle in message['turtles']]
+            turtles = check_turtles(message['turtles'])
             seq, stamp = int(_number(message['seq'])), float(_number(message['stamp']))
         except (KeyError, TypeError, ValueError, zlib.error) as error:
             raise SceneError('bad ~scene message: %s' % error) from None
