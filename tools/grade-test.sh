@@ -16,4 +16,4 @@ image=$(course_docker_image bookworm)
 COURSE_GRADER_IMAGE=$(docker image inspect -f '{{.Id}}' "$image")
 export COURSE_GRADER_IMAGE
 # Not exec: the EXIT trap of tools/docker.sh must still stop a dockerd it started.
-/usr/bin/python3 -m pytest -v -p no:cacheprovider "$ROOT/src/course_grader/test/containers" "$@"
+/usr/bin/python3 -m pytest -v -p no:cacheprovider "$ROOT/src/course_grader/test/classes_in_containers.py" "$@"

@@ -12,6 +12,7 @@ from course_testing.recording import TopicRecorder, path_length
 
 POSE_RATE_HZ = 62.5  # turtlesim publishes the pose at every 16 ms tick
 TICK_SECONDS = 0.016
+JITTER = 0.25       # seconds a pose may arrive late on a busy machine (jumps)
 
 
 def turtle_poses(turtle):
@@ -57,13 +58,14 @@ def turned(samples):
 
 def jumps(samples):
     """Moves between two heard poses that no velocity explains: (from (x, y), to (x, y)) of each.
-    A turtle that stood still at both ends (velocity 0) yet moved, or moved much farther than its
-    velocity over the time between: teleported, or /reset. Slack for poses a busy machine delays."""
+    turtlesim moves a turtle at most |linear_velocity| * 16 ms a tick; between two poses heard
+    dt seconds apart it had about dt / 16 ms ticks (JITTER more, for a pose a busy machine
+    delayed). Farther than that (or at all, standing still at both ends): a teleport or /reset."""
     found = []
     for (t_a, a), (t_b, b) in zip(samples, samples[1:]):
         moved = math.hypot(b.x - a.x, b.y - a.y)
         speed = max(abs(a.linear_velocity), abs(b.linear_velocity))
-        if moved > 1e-3 and (speed == 0.0 or moved > speed * (2 * (t_b - t_a) + 0.1) + 0.05):
+        if moved > speed * (t_b - t_a + JITTER) + 1e-3:
             found.append(((a.x, a.y), (b.x, b.y)))
     return found
 
