@@ -9,6 +9,7 @@ import uuid
 
 import rostest
 
+from course_grader.grader import marked_processes
 from example_class import ROOT, expected, labs, make_class, mismatches, read_results
 
 # What grading the move_turtlebot3 lab needs from the workspace: the grader, its checks, the
@@ -22,14 +23,13 @@ TRUSTED = {'move_turtlebot3': ['model', 'slides_as_printed', 'cmake_error'], 'my
 
 
 def tagged_processes(tag):
-    """The processes whose environment carries tag (everything a command given it started)."""
+    """The command lines of the processes whose environment carries tag (all that a command given
+    it started)."""
     found = []
-    for pid in (name for name in os.listdir('/proc') if name.isdigit()):
+    for pid in marked_processes(tag):
         try:
-            with open('/proc/%s/environ' % pid, 'rb') as stream:
-                if tag.encode() in stream.read().split(b'\0'):
-                    with open('/proc/%s/cmdline' % pid, 'rb') as command:
-                        found.append('%s %s' % (pid, command.read().replace(b'\0', b' ').decode(errors='replace')))
+            with open('/proc/%d/cmdline' % pid, 'rb') as command:
+                found.append('%d %s' % (pid, command.read().replace(b'\0', b' ').decode(errors='replace')))
         except OSError:
             pass
     return found

@@ -111,21 +111,27 @@ def unpack_output(stream_bytes, staging):
         pass   # the session broke down before it sent its folder: no result, the reason says why
 
 
+def marked_processes(mark):
+    """The ids of the processes whose environment carries `mark` (NAME=value)."""
+    needle = mark.encode()
+    found = []
+    for pid in (int(name) for name in os.listdir('/proc') if name.isdigit()):
+        try:
+            with open('/proc/%d/environ' % pid, 'rb') as stream:
+                if needle in stream.read().split(b'\0'):
+                    found.append(pid)
+        except OSError:
+            continue
+    return found
+
+
 def stop_marked(mark):
     """SIGKILL every process whose environment carries `mark`: what a --no-container session
     started, even in sessions of its own or reparented to init (roslaunch's nodes are). Again
     until none is left (one may fork meanwhile). Returns how many were stopped."""
-    needle = mark.encode()
     stopped = 0
     for _ in range(20):
-        found = []
-        for pid in (int(name) for name in os.listdir('/proc') if name.isdigit()):
-            try:
-                with open('/proc/%d/environ' % pid, 'rb') as stream:
-                    if needle in stream.read().split(b'\0'):
-                        found.append(pid)
-            except OSError:
-                continue
+        found = marked_processes(mark)
         for pid in found:
             try:
                 os.kill(pid, signal.SIGKILL)

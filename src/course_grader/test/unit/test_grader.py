@@ -39,18 +39,6 @@ def test_only_regular_files_come_back_from_a_sandbox_within_the_size_limit(tmp_p
     assert os.listdir(str(folder)) == ['build.log']
 
 
-def marked_processes(mark):
-    found = []
-    for pid in (name for name in os.listdir('/proc') if name.isdigit()):
-        try:
-            with open('/proc/%s/environ' % pid, 'rb') as stream:
-                if mark.encode() in stream.read().split(b'\0'):
-                    found.append(int(pid))
-        except OSError:
-            pass
-    return found
-
-
 def test_what_escaped_a_session_to_init_is_stopped_by_its_mark(tmp_path):
     # As roslaunch's nodes: in a session of their own, reparented to init when their parent goes.
     mark = 'COURSE_GRADER_RUN=test-%d' % os.getpid()
@@ -58,10 +46,10 @@ def test_what_escaped_a_session_to_init_is_stopped_by_its_mark(tmp_path):
     subprocess.run(['setsid', '-f', 'sleep', '600'], env=env, check=True)
     subprocess.run(['setsid', '-f', 'bash', '-c', 'sleep 600 & sleep 600'], env=env, check=True)
     try:
-        wait_until(lambda: len(marked_processes(mark)) == 4, 10, 'the three sleeps and their bash')
+        wait_until(lambda: len(grader.marked_processes(mark)) == 4, 10, 'the three sleeps and their bash')
     finally:
         assert grader.stop_marked(mark) == 4
-    assert marked_processes(mark) == []
+    assert grader.marked_processes(mark) == []
 
 
 def test_only_regular_files_of_the_trusted_sides_tar_stream_are_unpacked(tmp_path):
