@@ -17,4 +17,5 @@ if [[ $# -ge 2 && " $* " != *" --no-container "* && " $* " != *" --help "* && " 
     COURSE_GRADER_IMAGE=$(docker image inspect -f '{{.Id}}' "$image")
     export COURSE_GRADER_IMAGE
 fi
-exec rosrun course_grader grade "$@"
+# Not exec: the EXIT trap of tools/docker.sh must still stop a dockerd it started.
+rosrun course_grader grade "$@"

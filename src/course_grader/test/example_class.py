@@ -3,6 +3,7 @@
 import csv
 import json
 import os
+import subprocess
 
 import yaml
 
@@ -18,6 +19,21 @@ def labs():
 def expected(lab):
     with open(os.path.join(EXAMPLES, lab, 'expected.yaml')) as stream:
         return yaml.safe_load(stream)
+
+
+def make_class(lab, folder):
+    """The class as a teacher gets it (examples/grading/make_class.py): {student: folder}."""
+    listing = subprocess.run([os.path.join(EXAMPLES, 'make_class.py'), lab, folder], stdout=subprocess.PIPE,
+                             universal_newlines=True, check=True).stdout
+    return {os.path.basename(path): path for path in listing.split()}
+
+
+def outscored_twins(lab, rows):
+    """Hostile students that scored more than their honest twin, as sentences (empty: none did)."""
+    return ['%s: %s, more than its twin %s: %s' % (student, rows[student]['score'], wanted['twin'],
+                                                    rows[wanted['twin']]['score'])
+            for student, wanted in sorted(expected(lab).items())
+            if 'twin' in wanted and student in rows and float(rows[student]['score']) > float(rows[wanted['twin']]['score'])]
 
 
 def read_results(out):

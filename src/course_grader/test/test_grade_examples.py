@@ -1,37 +1,85 @@
 #!/usr/bin/env python3
 """grade --no-container on the trusted examples of the example classes (no hostile one): scores and
-sentences as expected.yaml says, and the same score on a second run."""
+sentences as expected.yaml says, and nothing the grading started still running afterwards."""
 import os
 import subprocess
 import tempfile
 import unittest
+import uuid
 
 import rostest
 
-from example_class import EXAMPLES, expected, labs, mismatches, read_results
+from course_grader.grader import marked_processes
+from example_class import ROOT, expected, labs, make_class, mismatches, read_results
+
+# What grading the move_turtlebot3 lab needs from the workspace: the grader, its checks, the
+# simulators and the packages whose environment hooks every course shell has.
+INSTALLED = ['course_checks', 'course_common', 'course_environment', 'course_grader', 'course_testing', 'fake_tb3',
+             'ros_loopback', 'turtlesim']
 
 # Quick ones, and each kind of outcome: full marks, the slides as printed, a build failure.
 TRUSTED = {'move_turtlebot3': ['model', 'slides_as_printed', 'cmake_error'], 'my_turtle': ['slides_as_printed'],
            'ros_exercises': ['model', 'slides_as_printed']}
 
 
+def tagged_processes(tag):
+    """The command lines of the processes whose environment carries tag (all that a command given
+    it started)."""
+    found = []
+    for pid in marked_processes(tag):
+        try:
+            with open('/proc/%d/cmdline' % pid, 'rb') as command:
+                found.append('%d %s' % (pid, command.read().replace(b'\0', b' ').decode(errors='replace')))
+        except OSError:
+            pass
+    return found
+
+
 class GradeExamplesTest(unittest.TestCase):
 
     def test_trusted_examples_without_containers(self):
+        tag = 'COURSE_GRADER_TEST=%s' % uuid.uuid4().hex
         for lab in labs():
             students = [s for s in TRUSTED.get(lab, []) if s in expected(lab)]
             with tempfile.TemporaryDirectory() as folder:
                 out = os.path.join(folder, 'grades')
+                submissions = make_class(lab, os.path.join(folder, 'class'))
                 result = subprocess.run(['rosrun', 'course_grader', 'grade', lab, '--no-container', '--jobs', '2',
-                                         '--out', out] + [os.path.join(EXAMPLES, lab, s) for s in students],
-                                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                        universal_newlines=True, stdin=subprocess.DEVNULL)
+                                         '--out', out] + [submissions[s] for s in students],
+                                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                                        stdin=subprocess.DEVNULL, env=dict(os.environ, **dict([tag.split('=')])))
                 print(result.stdout)
                 self.assertEqual(result.returncode, 0, result.stdout)
                 self.assertTrue(result.stdout.startswith('grade: --no-container: NOTHING IS ISOLATED'))
                 rows, details = read_results(out)
                 self.assertEqual(sorted(rows), sorted(students))
                 self.assertEqual(mismatches(lab, rows, details, students), [])
+                # roscore, fake_tb3, turtlesim, the students' nodes: all gone (roslaunch's nodes
+                # run in sessions of their own, which no process group reaches).
+                self.assertEqual(tagged_processes(tag), [])
+
+    def test_the_grader_runs_from_an_install_space(self):
+        with tempfile.TemporaryDirectory() as folder:
+            build = subprocess.run(['catkin_make', '--source', os.path.join(ROOT, 'src'), '--build',
+                                    os.path.join(folder, 'build'), '-DCATKIN_DEVEL_PREFIX=%s/devel' % folder,
+                                    '-DCMAKE_INSTALL_PREFIX=%s/install' % folder, '-DPYTHON_EXECUTABLE=/usr/bin/python3',
+                                    '-DCATKIN_WHITELIST_PACKAGES=%s' % ';'.join(INSTALLED), 'install'],
+                                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                                   stdin=subprocess.DEVNULL)
+            self.assertEqual(build.returncode, 0, build.stdout[-3000:])
+            student = make_class('move_turtlebot3', os.path.join(folder, 'class'))['model']
+            out = os.path.join(folder, 'grades')
+            # A shell with the install space only: no source tree, no devel space on any path.
+            result = subprocess.run(['bash', '-c', 'source "$1/install/setup.bash" && cd / && rosrun course_grader grade --help '
+                                     '| grep "rubrics in" && rosrun course_grader grade move_turtlebot3 "$2" '
+                                     '--no-container --out "$3"', 'grade', folder, student, out],
+                                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                                    stdin=subprocess.DEVNULL, env={'HOME': folder, 'PATH': '/usr/bin:/bin'})
+            print(result.stdout)
+            self.assertEqual(result.returncode, 0, result.stdout)
+            rows, details = read_results(out)
+            self.assertEqual(rows['model']['score'], '14', details['model'])
+            self.assertIn('(rubrics in %s/install/share/course_grader/rubrics)' % folder, result.stdout)
 
 
 if __name__ == '__main__':

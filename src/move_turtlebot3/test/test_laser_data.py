@@ -7,22 +7,10 @@ import rospy
 import rostest
 from sensor_msgs.msg import LaserScan
 
+from course_checks.laser import BEAMS as INDICES, printed_blocks
+from course_checks.robot import node_names
 from course_testing.waiting import wait_until
-from move_turtlebot3_testing import LabTestCase, Launch, node_names
-
-LABELS = ['s1 [0]', 's2 [90]', 's3 [180]', 's4 [270]', 's5 [359]']
-INDICES = [0, 90, 180, 270, 359]
-
-
-def printed_blocks(lines):
-    """The complete blocks laser_data.py printed, with the slide's labels: lists of the 5 values
-    (text). Anything else in the output (roslaunch, fake_tb3) is passed over."""
-    blocks = []
-    for start, line in enumerate(lines):
-        block = lines[start + 1:start + 11]
-        if line == '==========' and block[0::2] == LABELS:
-            blocks.append(block[1::2])
-    return blocks
+from move_turtlebot3_testing import LabTestCase, Launch
 
 
 def run(*argv):

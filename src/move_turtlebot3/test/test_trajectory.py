@@ -5,16 +5,8 @@ import numpy
 import rospy
 import rostest
 
+from course_checks.figures import fit_circle
 from move_turtlebot3_testing import LabTestCase, Launch
-
-
-def fitted_circle(poses):
-    """Least-squares circle through the positions: (centre x, centre y, radius)."""
-    xs = numpy.array([x for _, x, _, _ in poses])
-    ys = numpy.array([y for _, _, y, _ in poses])
-    design = numpy.column_stack([xs, ys, numpy.ones_like(xs)])
-    (a, b, c), *_ = numpy.linalg.lstsq(design, -(xs ** 2 + ys ** 2), rcond=None)
-    return -a / 2, -b / 2, numpy.sqrt(a * a / 4 + b * b / 4 - c)
 
 
 class TrajectoryTest(LabTestCase):
@@ -27,7 +19,7 @@ class TrajectoryTest(LabTestCase):
         period = 2 * numpy.pi / angular
         self.watch.wait_sim_seconds(1.5 * period + 2, timeout=120)
         poses = self.watch.poses_since(start)
-        centre_x, centre_y, radius = fitted_circle(poses)
+        centre_x, centre_y, radius = fit_circle([(x, y) for _, x, y, _ in poses])
         expected = linear / angular
         self.assertAlmostEqual(radius, expected, delta=0.05 * expected)
         # every position lies on that circle, and the circle starts at the spawn pose (0, 0)

@@ -9,8 +9,9 @@ import rostest
 from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty
 
+from course_checks.turtle import POSE_RATE_HZ, duration, tick_speeds, travelled
 from course_testing.waiting import wait_until
-from my_turtle_testing import POSE_LINE, POSE_RATE_HZ, PrintingNode, duration, tick_speeds, travelled, turtle1_poses
+from my_turtle_testing import POSE_LINE, PrintingNode, turtle1_poses
 
 FORWARD_SPEED_MPS = 0.5
 SPEED_TOLERANCE = 0.02  # relative

@@ -10,9 +10,10 @@ import rostest
 from PIL import Image
 from std_srvs.srv import Trigger
 
+from course_checks.turtle import travelled, turned
 from course_testing.processes import PtyProgram
 from course_testing.waiting import wait_until
-from my_turtle_testing import hold_key, travelled, turned, turtle1_poses
+from my_turtle_testing import hold_key, turtle1_poses
 
 SIDE_M = 1.5
 # From a k press to the turtle standing still takes up to a teleop pass, a relay loop and a

@@ -1,16 +1,12 @@
-"""What the ros_exercises rostests share: run the commands a student types, record a turtle's poses
-and save turtlesim's canvas."""
+"""What the ros_exercises rostests share: run the commands a student types and save turtlesim's canvas."""
 import re
 import subprocess
 import threading
 
-import numpy
 import rospy
 from std_srvs.srv import Trigger
-from turtlesim.msg import Pose
 
 from course_testing.processes import PtyProgram, stop_process_group
-from course_testing.recording import TopicRecorder
 from course_testing.waiting import wait_until
 
 
@@ -53,17 +49,6 @@ def run(*argv, timeout=30):
     result = subprocess.run(argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
                             timeout=timeout)
     return result.returncode, result.stdout
-
-
-def turtle_poses(turtle):
-    """A recorder of the turtle's poses."""
-    return TopicRecorder('/%s/pose' % turtle, Pose)
-
-
-def pose_array(recorder):
-    """The poses recorded so far as rows of x, y, theta, linear_velocity, angular_velocity."""
-    return numpy.array([(pose.x, pose.y, pose.theta, pose.linear_velocity, pose.angular_velocity)
-                        for pose in recorder.messages()])
 
 
 def save_canvas(path):

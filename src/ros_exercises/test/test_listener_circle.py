@@ -2,49 +2,33 @@
 """Exercises 2 and 3: the listener prints the pose the simulator publishes, and the circle node
 drives turtle1, or the spawned turtle "robotics" of the report's Fig. 5, round a circle of radius
 1 m while printing the pose."""
-import math
 import unittest
 
-import numpy
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
 
+from course_checks import turtle
+from course_checks.turtle import turtle_poses
 from course_testing.waiting import wait_until
-from ros_exercises_testing import Command, pose_array, turtle_poses
-import figures
-import printed_poses
+from ros_exercises_testing import Command
 
 TURTLE1_START = (5.544445, 5.544445)
 NUMBER = r'(-?\d+\.\d+)'
 
 
 def assert_printed_poses_were_published(test, printed, recorder):
-    """The printed (x, y, theta) are poses the simulator published, in order, keeping up with the
-    turtle: on the path of the poses the recorder heard, between two of them where it missed some
-    (printed_poses says how). Returns the judgement."""
-    judgement = printed_poses.judge(printed, pose_array(recorder))
-    wrong = printed_poses.problem(judgement)
-    if wrong:
-        test.fail(wrong)
-    return judgement
+    """The printed (x, y, theta) are poses the simulator published, in order, keeping up with the turtle."""
+    verdict = turtle.printed_poses_published(printed, recorder)
+    test.assertTrue(verdict.passed, verdict.reason)
 
 
 def assert_circle(test, recorder, centre, radius):
     """One full turn of moving poses lies on a circle of `radius` around `centre`, within 2 %."""
-    def moving_points():
-        poses = pose_array(recorder)
-        return poses[poses[:, 3] > 0, :2] if len(poses) else poses
-
-    turn_poses = int(2 * math.pi / radius / 0.016) + 10  # turtlesim moves 0.016 s per pose
-    wait_until(lambda: len(moving_points()) >= turn_poses, 30, 'a full turn of poses')
-    points = moving_points()
-    centre_x, centre_y, fitted_radius = figures.fit_circle(points)
-    test.assertAlmostEqual(fitted_radius, radius, delta=0.02 * radius)
-    test.assertLess(math.hypot(centre_x - centre[0], centre_y - centre[1]), 0.02 * radius,
-                    'centre (%f, %f)' % (centre_x, centre_y))
-    distances = numpy.hypot(points[:, 0] - centre[0], points[:, 1] - centre[1])
-    test.assertLess(numpy.abs(distances - radius).max(), 0.02 * radius)
+    wait_until(lambda: len(turtle.moving_points(turtle.pose_array(recorder))) >= turtle.full_turn(radius), 30,
+               'a full turn of poses')
+    verdict = turtle.circle(turtle.moving_points(turtle.pose_array(recorder)), centre, radius, 0.02)
+    test.assertTrue(verdict.passed, verdict.reason)
 
 
 class TestListenerCircle(unittest.TestCase):

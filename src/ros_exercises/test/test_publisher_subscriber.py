@@ -7,6 +7,8 @@ import rospy
 import rostest
 from std_msgs.msg import Int32
 
+from course_checks import rates
+from course_checks.rates import rate_of
 from course_testing.recording import TopicRecorder
 
 from ros_exercises_testing import Command, run
@@ -15,17 +17,9 @@ FAST_ID = '4095127'
 SLOW_ID = '907'
 
 
-def rate_of(entries):
-    times = [arrival for arrival, _ in entries]
-    return (len(times) - 1) / (times[-1] - times[0])
-
-
 def assert_cycles_through(test, digits, id_number):
-    """The digits are the ID's, in order, starting anywhere and wrapping round."""
-    expected = [int(digit) for digit in id_number]
-    starts = [start for start in range(len(expected))
-              if all(digit == expected[(start + i) % len(expected)] for i, digit in enumerate(digits))]
-    test.assertTrue(starts, 'digits %s are not the ID %s over and over' % (digits, id_number))
+    verdict = rates.cycles_through(digits, id_number)
+    test.assertTrue(verdict.passed, verdict.reason)
 
 
 class TestPublisherSubscriber(unittest.TestCase):

@@ -15,8 +15,9 @@ import rospy
 import rostest
 from turtlesim.srv import Kill
 
-from ros_exercises_testing import Command, pose_array, save_canvas, turtle_poses
-import figures
+from course_checks import figures
+from course_checks.turtle import pose_array, turtle_poses
+from ros_exercises_testing import Command, save_canvas
 
 TOLERANCE = 0.05  # metres
 START = (1.0, 1.0, 0.0)  # where exercise5.launch spawns the turtle

@@ -9,8 +9,9 @@ import rospy
 import rostest
 from turtlesim.srv import Kill
 
+from course_checks.turtle import turtle_poses
 from course_testing.waiting import wait_until
-from ros_exercises_testing import Command, run, turtle_poses
+from ros_exercises_testing import Command, run
 
 
 def spawn_turtle(node_name, *arguments):

@@ -148,3 +148,14 @@ def explain_run(script, output, started, stopped_cleanly, python2_sentences=()):
         sentences.append('%s did not stop on Ctrl-C (SIGINT) and had to be killed: let '
                          'rospy.spin() or `while not rospy.is_shutdown()` end the program' % script)
     return sentences
+
+
+def log_tail(path, lines=15):
+    """The last lines of a log file (read from its last 200 kB), '' when it cannot be read."""
+    try:
+        with open(path, 'rb') as stream:
+            stream.seek(0, os.SEEK_END)
+            stream.seek(max(0, stream.tell() - 200000))
+            return '\n'.join(stream.read().decode('utf-8', 'replace').splitlines()[-lines:])
+    except OSError:
+        return ''

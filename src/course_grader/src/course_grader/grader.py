@@ -1,6 +1,7 @@
 """The teacher's command: grade a class's submissions of a lab, each in its own container (or, with
 --no-container, its own process group), in parallel, and write grades.csv, junit/ and report.html."""
 import argparse
+import io
 import os
 import pwd
 import resource
@@ -8,21 +9,23 @@ import shutil
 import signal
 import subprocess
 import sys
+import tarfile
 import tempfile
 import threading
 import time
 import uuid
 from concurrent.futures import ThreadPoolExecutor
 
-from course_grader import reports, results, rubric as rubrics
-from course_grader.session import PROCESS_GROUPS
+from course_grader import feedback, reports, results, rubric as rubrics
 from course_grader.submission import SubmissionError, find_package, student_name, unpack
 from course_testing import processes
 
 MARKER = '.course_grader'            # in --out: the folder is the grader's (it may empty it)
-COURSE_IN_IMAGE = '/home/student/course'
-SESSION = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'nodes', 'grade_submission')
+RUN_MARK = 'COURSE_GRADER_RUN'       # in the environment of everything a --no-container session starts
 MAX_COPIED_BYTES = 50 * 2 ** 20      # of what one sandbox leaves in its output folder
+# The trusted side of a container is root with no capability but these: start the student's side
+# as the user `student`, and stop it. No write access anywhere else, no other user's processes.
+TRUSTED_CAPABILITIES = ['--cap-drop', 'ALL', '--cap-add', 'SETUID', '--cap-add', 'SETGID', '--cap-add', 'KILL']
 CONTAINER_LIMITS = ['--memory', '1536m', '--memory-swap', '1536m', '--pids-limit', '512',
                     '--cpus', '1', '--ulimit', 'nofile=1024:1024', '--ulimit', 'fsize=104857600',
                     '--tmpfs', '/tmp:rw,exec,nosuid,nodev,size=512m']
@@ -33,7 +36,7 @@ class GraderError(Exception):
 
 
 def describe_labs():
-    lines = ['labs and their criteria (rubrics in %s):' % os.path.normpath(rubrics.RUBRIC_DIR)]
+    lines = ['labs and their criteria (rubrics in %s):' % rubrics.rubric_dir()]
     for lab in rubrics.labs():
         rubric = rubrics.load(lab)
         lines.append('  %s: %s (%g points)' % (lab, rubric.title, rubric.max_score))
@@ -87,7 +90,7 @@ def copy_output(staging, folder):
     copied = 0
     for name in sorted(os.listdir(staging)):
         path = os.path.join(staging, name)
-        if name == PROCESS_GROUPS or os.path.islink(path) or not os.path.isfile(path):
+        if os.path.islink(path) or not os.path.isfile(path):
             continue
         size = os.path.getsize(path)
         if copied + size > MAX_COPIED_BYTES:
@@ -96,27 +99,49 @@ def copy_output(staging, folder):
         copied += size
 
 
-def _tail(path, lines=15):
+def unpack_output(stream_bytes, staging):
+    """The regular files of the tar stream the container's trusted side sent, into staging."""
     try:
-        with open(path, errors='replace') as stream:
-            return '\n'.join(stream.read()[-20000:].splitlines()[-lines:])
-    except OSError:
-        return ''
+        with tarfile.open(fileobj=io.BytesIO(stream_bytes), mode='r:') as archive:
+            for member in archive:
+                if member.isfile() and os.path.basename(member.name) == member.name and member.name[:1] != '.':
+                    with open(os.path.join(staging, member.name), 'wb') as target:
+                        shutil.copyfileobj(archive.extractfile(member), target)
+    except tarfile.TarError:
+        pass   # the session broke down before it sent its folder: no result, the reason says why
 
 
-def kill_process_groups(listing):
-    try:
-        with open(listing) as stream:
-            groups = {int(line) for line in stream if line.strip().isdigit()}
-        os.remove(listing)
-    except (OSError, ValueError):
-        return
-    for group in groups:
-        if group > 1 and group != os.getpgid(0):
+def marked_processes(mark):
+    """The ids of the processes whose environment carries `mark` (NAME=value)."""
+    needle = mark.encode()
+    found = []
+    for pid in (int(name) for name in os.listdir('/proc') if name.isdigit()):
+        try:
+            with open('/proc/%d/environ' % pid, 'rb') as stream:
+                if needle in stream.read().split(b'\0'):
+                    found.append(pid)
+        except OSError:
+            continue
+    return found
+
+
+def stop_marked(mark):
+    """SIGKILL every process whose environment carries `mark`: what a --no-container session
+    started, even in sessions of its own or reparented to init (roslaunch's nodes are). Again
+    until none is left (one may fork meanwhile). Returns how many were stopped."""
+    stopped = 0
+    for _ in range(20):
+        found = marked_processes(mark)
+        for pid in found:
             try:
-                os.killpg(group, signal.SIGKILL)
+                os.kill(pid, signal.SIGKILL)
             except (ProcessLookupError, PermissionError):
                 pass
+        stopped += len(found)
+        if not found:
+            break
+        time.sleep(0.1)
+    return stopped
 
 
 def _limit_resources():
@@ -176,7 +201,6 @@ class Grader:
             return results.failed(self.rubric, student, str(error))
         staging = os.path.join(scratch, 'out')
         os.makedirs(staging)
-        os.chmod(staging, 0o777)   # the container's user writes there
         if self.args.no_container:
             reason = self._run_on_host(submission, package, student, staging, scratch)
         else:
@@ -191,30 +215,31 @@ class Grader:
     def _session_args(self, package, out, scratch, student):
         args = ['--lab', self.rubric.lab, '--package', package, '--out', out, '--scratch', scratch,
                 '--student', student]
+        if self.args.rubric:
+            args += ['--rubric', os.path.abspath(self.args.rubric) if self.args.no_container else '/rubric.yaml']
         return args
 
     def _run_in_container(self, submission, package, student, staging):
+        """The trusted side (the session, roscore, the simulators) as root without privileges, the
+        student's side as `student`; the result comes back on the container's standard output."""
         name = 'course-grader-%s-%s' % (self.run_id, student)
-        rubric_mount = []
-        rubric = '%s/src/course_grader/rubrics/%s.yaml' % (COURSE_IN_IMAGE, self.rubric.lab)
-        if self.args.rubric:
-            rubric_mount = ['-v', '%s:/rubric.yaml:ro' % os.path.abspath(self.args.rubric)]
-            rubric = '/rubric.yaml'
+        rubric_mount = ['-v', '%s:/rubric.yaml:ro' % os.path.abspath(self.args.rubric)] if self.args.rubric else []
         # --init: a reaper as PID 1, so that what the submission forks and leaves behind is reaped.
-        command = ['docker', 'run', '--name', name, '--init', '--network', 'none', '--user', 'student',
-                   '--read-only', '--security-opt', 'no-new-privileges', '--cap-drop', 'ALL',
-                   '-e', 'ROS_HOME=/tmp/ros', '-e', 'HOME=/tmp/home',
-                   '-v', '%s:/submission:ro' % submission, '-v', '%s:/out' % staging] + rubric_mount \
-            + CONTAINER_LIMITS + [self.args.image, 'bash', '-c',
-                                  'mkdir -p /tmp/home /tmp/ws && source tools/env.sh && exec rosrun course_grader '
-                                  'grade_submission "$@"', 'grade_submission', '--rubric', rubric] \
-            + self._session_args('/submission/' + package, '/out', '/tmp/ws', student)
+        command = ['docker', 'run', '--name', name, '--init', '--network', 'none', '--user', 'root',
+                   '--read-only', '--security-opt', 'no-new-privileges'] + TRUSTED_CAPABILITIES + [
+                   '-e', 'HOME=/tmp/grader', '-e', 'ROS_HOME=/tmp/grader/ros',
+                   '-v', '%s:/submission:ro' % submission] + rubric_mount + CONTAINER_LIMITS + [
+                   self.args.image, 'bash', '-c', 'mkdir -p -m 0700 /tmp/grader && source tools/env.sh && exec '
+                   'rosrun course_grader grade_submission "$@"', 'grade_submission', '--student-user', 'student',
+                   '--send'] + self._session_args('/submission/' + package, '/tmp/grader/out', '/tmp/student', student)
         log = os.path.join(staging, 'grader.txt')
+        sent = b''
         try:
             with open(log, 'wb') as stream:
-                process = subprocess.Popen(command, stdout=stream, stderr=subprocess.STDOUT)
+                process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=stream)
                 try:
-                    code = process.wait(self.wall_limit)
+                    sent, _ = process.communicate(timeout=self.wall_limit)
+                    code = process.returncode
                 except subprocess.TimeoutExpired:
                     code = None
         finally:
@@ -223,39 +248,40 @@ class Grader:
             if 'process' in locals() and process.poll() is None:
                 process.kill()
                 process.wait()
+        unpack_output(sent[:MAX_COPIED_BYTES + 2 ** 20], staging)
         return self._reason(code, log)
 
     def _run_on_host(self, submission, package, student, staging, scratch):
+        """The session on this machine, as our user: the student's side apart only in its
+        environment (no overlay on the trusted side) and its process groups (docs/grading.md)."""
         from course_testing.processes import stop_process_group
-        work = os.path.join(scratch, 'ws')
-        os.makedirs(work)
+        mark = '%s-%s' % (self.run_id, student)
         env = dict(os.environ, ROS_HOME=os.path.join(scratch, 'ros'))
-        argv = ['/usr/bin/python3', os.path.normpath(SESSION)]
-        if self.args.rubric:
-            argv += ['--rubric', os.path.abspath(self.args.rubric)]
-        argv += self._session_args(os.path.join(submission, package), staging, work, student)
+        env[RUN_MARK] = mark
+        argv = ['rosrun', 'course_grader', 'grade_submission'] + self._session_args(
+            os.path.join(submission, package), staging, os.path.join(scratch, 'student'), student)
         log = os.path.join(staging, 'grader.txt')
         with open(log, 'wb') as stream:
-            process = subprocess.Popen(argv, stdout=stream, stderr=subprocess.STDOUT, env=env,
-                                       start_new_session=True, preexec_fn=_limit_resources)
+            process = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=stream, stderr=subprocess.STDOUT,
+                                       env=env, start_new_session=True, preexec_fn=_limit_resources)
             try:
                 code = process.wait(self.wall_limit)
             except subprocess.TimeoutExpired:
                 code = None
             finally:
                 stop_process_group(process, 10)
-                # The session started roscore, the simulators and the student's nodes in process
-                # groups of their own, and stops them; if it could not, they go now.
-                kill_process_groups(os.path.join(staging, PROCESS_GROUPS))
+                # The session stops what it started; what escaped it (a node in a session of its
+                # own, reparented to init) carries the mark in its environment and goes now.
+                stop_marked('%s=%s' % (RUN_MARK, mark))
         return self._reason(code, log)
 
     def _reason(self, code, log):
         if code is None:
             return 'the grading did not end within %d s and was stopped' % self.wall_limit
         if code == 137:
-            return 'the sandbox was killed (out of memory, %s): %s' % (CONTAINER_LIMITS[1], _tail(log, 3))
+            return 'the sandbox was killed (out of memory, %s): %s' % (CONTAINER_LIMITS[1], feedback.log_tail(log, 3))
         if code != 0:
-            return 'the grading stopped with exit status %d: %s' % (code, _tail(log, 5))
+            return 'the grading stopped with exit status %d: %s' % (code, feedback.log_tail(log, 5))
         return None
 
 

@@ -6,6 +6,8 @@ import html
 import os
 import xml.etree.ElementTree as ET
 
+from course_grader import feedback
+
 
 def _points(value):
     return ('%g' % value) if isinstance(value, (int, float)) else str(value)
@@ -52,17 +54,6 @@ def write_junit(result, folder):
     os.makedirs(folder, exist_ok=True)
     with open(os.path.join(folder, result['student'] + '.xml'), 'w') as stream:
         stream.write('<?xml version="1.0" encoding="UTF-8"?>\n' + junit_xml(result) + '\n')
-
-
-def _tail(path, lines):
-    try:
-        with open(path, errors='replace') as stream:
-            stream.seek(0, os.SEEK_END)
-            size = stream.tell()
-            stream.seek(max(0, size - 200000))
-            return '\n'.join(stream.read().splitlines()[-lines:])
-    except OSError:
-        return None
 
 
 CSS = '''
@@ -122,7 +113,7 @@ def html_report(results, rubric, out_dir, seconds=None, log_lines=25):
                              '<figcaption>%s</figcaption></figure>' % (esc(picture), data, esc(picture)))
             parts.append('</div>')
         for log in sorted(n for n in os.listdir(folder) if n.endswith('.log')) if os.path.isdir(folder) else []:
-            tail = _tail(os.path.join(folder, log), log_lines)
+            tail = feedback.log_tail(os.path.join(folder, log), log_lines)
             if tail:
                 parts.append('<details><summary>%s (last %d lines; whole log in %s/%s)</summary><pre>%s</pre>'
                              '</details>' % (esc(log), log_lines, esc(student), esc(log), esc(tail)))

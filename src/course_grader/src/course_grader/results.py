@@ -2,17 +2,9 @@
 import json
 import os
 
+from course_checks.verdict import Verdict
+
 RESULT_FILE = 'result.json'
-
-
-class Outcome:
-    """What one criterion gave: passed or not, the sentence that says why (expected and seen), and
-    the sentences about usual mistakes (hints)."""
-
-    def __init__(self, passed, reason='', hints=()):
-        self.passed = bool(passed)
-        self.reason = reason
-        self.hints = list(hints)
 
 
 def score(rubric, outcomes, student, error=None, pictures=(), seconds=None):
@@ -20,7 +12,7 @@ def score(rubric, outcomes, student, error=None, pictures=(), seconds=None):
     an outcome (the run stopped before them) get 0 points with `error` as their reason."""
     criteria = []
     for criterion in rubric.criteria:
-        outcome = outcomes.get(criterion.id) or Outcome(False, error or 'not checked')
+        outcome = outcomes.get(criterion.id) or Verdict(False, error or 'not checked')
         criteria.append({
             'id': criterion.id, 'title': criterion.title, 'max_points': criterion.points,
             'points': criterion.points if outcome.passed else 0, 'passed': outcome.passed,
@@ -49,7 +41,7 @@ def read(rubric, student, folder):
         with open(path) as stream:
             data = json.load(stream)
         by_id = {c['id']: c for c in data['criteria']}
-        outcomes = {cid: Outcome(c['passed'] is True, str(c.get('reason', ''))[:4000],
+        outcomes = {cid: Verdict(c['passed'] is True, str(c.get('reason', ''))[:4000],
                                  [str(h)[:4000] for h in c.get('hints', [])][:20])
                     for cid, c in by_id.items() if cid in {c.id for c in rubric.criteria}}
         pictures = [p for p in data.get('pictures', []) if isinstance(p, str)

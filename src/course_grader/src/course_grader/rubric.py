@@ -1,10 +1,17 @@
 """Rubric files (rubrics/<lab>.yaml): what is graded, for how many points, with which thresholds."""
 import os
 
+import rospkg
 import yaml
 
-RUBRIC_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'rubrics')
-DEFAULT_LIMITS = {'build_seconds': 240, 'run_seconds': 60, 'stop_seconds': 5}
+from course_grader.labs import LABS
+
+LIMITS = ('build_seconds', 'run_seconds', 'start_seconds', 'stop_seconds')
+
+
+def rubric_dir():
+    """The package's rubrics/: in the source tree or in the install space, wherever it was found."""
+    return os.path.join(rospkg.RosPack().get_path('course_grader'), 'rubrics')
 
 
 class RubricError(Exception):
@@ -26,8 +33,9 @@ class Criterion:
         self.points = points
         self.settings = {k: v for k, v in entry.items() if k not in ('id', 'title', 'points')}
 
-    def get(self, key, default=None):
-        return self.settings.get(key, default)
+    def __getitem__(self, key):
+        """A setting of the criterion (a threshold, a file name): the rubric's, there is no default."""
+        return self.settings[key]
 
 
 class Rubric:
@@ -41,7 +49,6 @@ class Rubric:
         self.lab = str(data['lab'])
         self.title = str(data.get('title', self.lab))
         self.package = str(data['package'])
-        self.limits = dict(DEFAULT_LIMITS, **(data.get('limits') or {}))
         if not isinstance(data['criteria'], list) or not data['criteria']:
             raise RubricError('%s: criteria must be a non-empty list' % path)
         self.criteria = [Criterion(entry, '%s, criterion %d' % (path, number))
@@ -50,6 +57,28 @@ class Rubric:
         duplicates = sorted({i for i in ids if ids.count(i) > 1})
         if duplicates:
             raise RubricError('%s: criterion ids used twice: %s' % (path, ', '.join(duplicates)))
+        self.limits = data.get('limits') or {}
+        if not isinstance(self.limits, dict) or set(LIMITS) - set(self.limits):
+            raise RubricError('%s: limits must give %s' % (path, ', '.join(LIMITS)))
+
+    def check_against(self, known, lab_module):
+        """Refuse, before anything runs, a criterion the lab does not check, a check of the lab the
+        rubric forgets, and a setting a check reads that the rubric does not give; `known` is the
+        lab's CRITERIA: {criterion id: settings its check reads}."""
+        ids = [c.id for c in self.criteria]
+        unknown = [i for i in ids if i not in known]
+        if unknown:
+            raise RubricError('%s: criterion %s is not one that %s checks (it checks: %s)' % (
+                self.path, ', '.join(unknown), lab_module, ', '.join(known)))
+        forgotten = [i for i in known if i not in ids]
+        if forgotten:
+            raise RubricError('%s: criterion %s of %s is missing from the rubric (give it, with 0 points '
+                              'to leave it out of the grade)' % (self.path, ', '.join(forgotten), lab_module))
+        for criterion in self.criteria:
+            missing = [key for key in known[criterion.id] if key not in criterion.settings]
+            if missing:
+                raise RubricError('%s: criterion %s has no %s (its check in %s reads them)' % (
+                    self.path, criterion.id, ', '.join(missing), lab_module))
 
     @property
     def max_score(self):
@@ -62,19 +91,24 @@ class Rubric:
         raise KeyError(criterion_id)
 
 
-def labs(rubric_dir=RUBRIC_DIR):
+def labs():
     """The labs that have a rubric, sorted."""
-    return sorted(name[:-5] for name in os.listdir(rubric_dir) if name.endswith('.yaml'))
+    return sorted(name[:-5] for name in os.listdir(rubric_dir()) if name.endswith('.yaml'))
 
 
-def load(lab_or_path, rubric_dir=RUBRIC_DIR):
-    """The rubric of a lab (by name) or of a YAML file (by path)."""
-    path = lab_or_path if lab_or_path.endswith('.yaml') else os.path.join(rubric_dir, lab_or_path + '.yaml')
+def load(lab_or_path):
+    """The rubric of a lab (by name) or of a YAML file (by path), checked against the lab's checks."""
+    path = lab_or_path if lab_or_path.endswith('.yaml') else os.path.join(rubric_dir(), lab_or_path + '.yaml')
     if not os.path.isfile(path):
-        raise RubricError('no rubric for lab %r (the labs are: %s)' % (lab_or_path, ', '.join(labs(rubric_dir))))
+        raise RubricError('no rubric for lab %r (the labs are: %s)' % (lab_or_path, ', '.join(labs())))
     try:
         with open(path) as stream:
             data = yaml.safe_load(stream)
     except yaml.YAMLError as error:
         raise RubricError('%s is not valid YAML: %s' % (path, error))
-    return Rubric(data, path)
+    rubric = Rubric(data, path)
+    if rubric.lab not in LABS:
+        raise RubricError('%s: lab %r is none of the grader\'s (%s)' % (path, rubric.lab, ', '.join(sorted(LABS))))
+    lab = LABS[rubric.lab]
+    rubric.check_against(lab.CRITERIA, lab.__name__)
+    return rubric

@@ -1,57 +1,57 @@
-"""The grading of one submission, inside its sandbox (a container, or a process group of its own):
-build the student's package in a scratch catkin workspace overlaid on the course workspace, start
-a master, run the lab's checks, write result.json, logs and pictures into the output folder.
+"""The grading of one submission, inside its sandbox: the trusted side (this process, roscore, the
+simulators, the checks, with the course's environment only) and the student's side (the build and
+the student's nodes, with the student's overlay, as another user when the sandbox allows it) stand
+apart; only the trusted side writes the result, logs and pictures.
 
-This is the only part of the grader that runs next to the student's code; the host reads what it
-writes as untrusted (results.read)."""
+In a container this process runs as root with no capability but to switch users and to stop the
+student's processes, and the student's side runs as the user `student`: it cannot write the output
+folder, nor signal or trace this process, roscore or the simulators. The result leaves as a tar
+stream on this process's standard output, which no process of the student's holds."""
 import argparse
-import importlib
 import os
-import shutil
+import stat
 import subprocess
 import sys
+import tarfile
 import time
 
-from course_grader import feedback, results, rubric as rubrics
-from course_grader.results import Outcome
+from course_checks.launch import Launch
+from course_grader import feedback, labs, results, rubric as rubrics
+from course_grader.results import Verdict
 
-COURSE_SRC = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', '..'))
-
-
-def test_helpers(package):
-    """The test folder of the course's own package, so that the grader runs the checks of the
-    project's tests (a student's package of the same name shadows the course's on ROS paths)."""
-    folder = os.path.join(COURSE_SRC, package, 'test')
-    if folder not in sys.path:
-        sys.path.insert(0, folder)
-    return folder
+MAX_PICTURE_BYTES = 5 * 2 ** 20
 
 
-PROCESS_GROUPS = 'process_groups.txt'   # in the output folder: every group the session started
+class StudentSide:
+    """How the student's build and nodes are started: as `user` (None: as we are), with the
+    course's environment plus, once built, the student's overlay."""
 
+    def __init__(self, user, scratch):
+        self.user = user
+        self.scratch = scratch
+        self.home = os.path.join(scratch, 'home')
+        self.pictures = os.path.join(scratch, 'pictures')   # where the student's turtlesim saves
+        self.env = dict(os.environ, HOME=self.home, ROS_HOME=os.path.join(scratch, 'ros_home'))
 
-def note_process_group(out_dir, process):
-    """Remember a process group started in a session of its own, so that the host can kill what is
-    left of it when it runs the session without a container (where nothing else would)."""
-    with open(os.path.join(out_dir, PROCESS_GROUPS), 'a') as stream:
-        stream.write('%d\n' % process.pid)
+    def start(self, argv, log_path, cwd=None):
+        return Launch(argv, log_path, env=self.env, user=self.user, cwd=cwd)
 
-
-class Deadline:
-    def __init__(self, seconds):
-        self.end = time.monotonic() + seconds
-
-    def left(self, at_least=0.5):
-        return max(at_least, self.end - time.monotonic())
+    def run(self, argv, timeout):
+        """What a short command printed (standard output)."""
+        as_user = {'user': self.user, 'group': self.user, 'extra_groups': []} if self.user else {}
+        return subprocess.run(argv, env=self.env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                              stderr=subprocess.DEVNULL, timeout=timeout, check=True, **as_user).stdout
 
 
 class Session:
-    """What the lab's checks need: the package's folder, the rubric, the output folder, logs."""
+    """What the lab's checks need: the package's folder, the rubric, the output folder, and the
+    two ways to start a program: on the student's side or on the trusted side."""
 
-    def __init__(self, rubric, package_dir, out_dir):
+    def __init__(self, rubric, package_dir, out_dir, student_side):
         self.rubric = rubric
         self.package_dir = package_dir
         self.out_dir = out_dir
+        self.student_side = student_side
         self.pictures = []
 
     def script(self, name):
@@ -66,54 +66,73 @@ class Session:
     def log_path(self, name):
         return os.path.join(self.out_dir, name)
 
+    def student(self, argv, log_name):
+        """One of the student's programs (a script, a roslaunch of the student's package)."""
+        return self.student_side.start(argv, self.log_path(log_name))
 
-def run_logged(argv, log_path, timeout, cwd=None, env=None):
-    """Run a command in its own process group, output to log_path (at most 20 MB); on timeout
-    kill the group. Returns the exit code, or None when the time limit was reached."""
-    from course_testing.processes import stop_process_group
-    with open(log_path, 'wb') as log:
-        process = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, cwd=cwd,
-                                   env=env, start_new_session=True)
-        note_process_group(os.path.dirname(log_path), process)
-        deadline = time.monotonic() + timeout
-        written = 0
-        import selectors
-        selector = selectors.DefaultSelector()
-        selector.register(process.stdout, selectors.EVENT_READ)
-        while True:
-            if time.monotonic() > deadline:
-                stop_process_group(process, 5)
-                return None
-            if selector.select(timeout=0.5):
-                chunk = os.read(process.stdout.fileno(), 65536)
-                if not chunk:
-                    break
-                if written < 20 * 2 ** 20:
-                    log.write(chunk)
-                    written += len(chunk)
-        return process.wait(max(1.0, deadline - time.monotonic()))
+    def trusted(self, argv, log_name):
+        """A program of the course (a simulator), with the course's environment only."""
+        return Launch(argv, self.log_path(log_name))
+
+    def picture(self, name):
+        """Where a simulator of the trusted side saves the picture `name`."""
+        self.pictures.append(name)
+        return self.log_path(name)
+
+    def student_picture(self, name):
+        """Where a simulator the student's launch file starts saves the picture `name`; fetched
+        into the output folder by keep_student_picture once it has stopped."""
+        return os.path.join(self.student_side.pictures, name)
+
+    def keep_student_picture(self, name):
+        """The picture saved on the student's side, if it is a regular PNG file of a sane size."""
+        try:
+            descriptor = os.open(self.student_picture(name), os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+        except OSError:
+            return
+        with os.fdopen(descriptor, 'rb') as source:
+            info = os.fstat(source.fileno())
+            data = source.read(MAX_PICTURE_BYTES + 1) if stat.S_ISREG(info.st_mode) else b''
+        if data.startswith(b'\x89PNG') and len(data) <= MAX_PICTURE_BYTES:
+            with open(self.log_path(name), 'wb') as target:
+                target.write(data)
+            self.pictures.append(name)
+
+
+def run_logged(side, argv, log_path, timeout, cwd=None):
+    """Run a command on the student's side, its output to log_path; on timeout stop its group.
+    Returns the exit code, or None when the time limit was reached."""
+    run = side.start(argv, log_path, cwd=cwd)
+    try:
+        run.process.wait(timeout)
+    except subprocess.TimeoutExpired:
+        run.stop(5)
+        return None
+    run.stop(5)
+    return run.process.returncode
 
 
 def build(session, scratch):
-    """catkin_make of the student's package in scratch/ (overlay of the sourced course workspace).
-    Returns the environment of the built overlay, or raises BuildFailed."""
-    src = os.path.join(scratch, 'src')
-    os.makedirs(src, exist_ok=True)
-    package = os.path.join(src, session.rubric.package)
-    shutil.copytree(session.package_dir, package, symlinks=True)
-    session.package_dir = package
+    """catkin_make of the student's package in scratch/ws (an overlay of the course workspace), on
+    the student's side. Returns the environment of the built overlay, or raises BuildFailed."""
+    side = session.student_side
+    workspace = os.path.join(scratch, 'ws')
+    package = os.path.join(workspace, 'src', session.rubric.package)
     log = session.log_path('build.log')
-    code = run_logged(['catkin_make', '--directory', scratch, '-DPYTHON_EXECUTABLE=/usr/bin/python3',
-                       '-DCMAKE_BUILD_TYPE=Release', '-j1'], log, session.rubric.limits['build_seconds'])
+    seconds = session.rubric.limits['build_seconds']
+    code = run_logged(side, ['bash', '-c', 'mkdir -p "$1" "$2" "$3/src" && cp -R "$4" "$5" && exec catkin_make '
+                             '--directory "$3" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -j1',
+                             'build', side.home, side.pictures, workspace, session.package_dir, package],
+                      log, seconds)
     if code != 0:
         with open(log, errors='replace') as stream:
             text = stream.read()
         if code is None:
-            raise BuildFailed('catkin_make did not finish within %d s' % session.rubric.limits['build_seconds'])
+            raise BuildFailed('catkin_make did not finish within %d s' % seconds)
         raise BuildFailed(feedback.first_compiler_error(text) or 'catkin_make failed (exit %d): see build.log' % code)
-    env_text = subprocess.run(['bash', '-c', 'source "$1/devel/setup.bash" && env -0', 'env', scratch],
-                              capture_output=True, check=True, timeout=60).stdout
-    return dict(item.split('=', 1) for item in env_text.decode().split('\0') if '=' in item)
+    session.package_dir = package
+    listing = side.run(['bash', '-c', 'source "$1/devel/setup.bash" && env -0', 'env', workspace], 60)
+    return dict(item.split('=', 1) for item in listing.decode(errors='replace').split('\0') if '=' in item)
 
 
 class BuildFailed(Exception):
@@ -128,10 +147,7 @@ class Master:
         import rosgraph
         self.port = free_port()
         os.environ['ROS_MASTER_URI'] = 'http://localhost:%d' % self.port
-        self.log = open(log_path, 'wb')
-        self.process = subprocess.Popen(['roscore', '-p', str(self.port)], stdout=self.log,
-                                        stderr=subprocess.STDOUT, start_new_session=True)
-        note_process_group(os.path.dirname(log_path), self.process)
+        self.roscore = Launch(['roscore', '-p', str(self.port)], log_path)
         deadline = time.monotonic() + 60
         master = rosgraph.Master('/course_grader')
         while True:
@@ -139,7 +155,7 @@ class Master:
                 master.getParam('/run_id')
                 break
             except Exception:
-                if time.monotonic() > deadline or self.process.poll() is not None:
+                if time.monotonic() > deadline or self.roscore.ended():
                     raise RuntimeError('roscore did not start on port %d' % self.port)
                 time.sleep(0.1)
         master.setParam('/use_sim_time', False)
@@ -147,31 +163,29 @@ class Master:
         rospy.init_node('course_grader', disable_signals=True)
 
     def stop(self):
-        from course_testing.processes import stop_process_group
         import rospy
         rospy.signal_shutdown('graded')
-        stop_process_group(self.process, 15)
-        self.log.close()
+        self.roscore.stop(15)
 
 
-def grade(rubric, package_dir, out_dir, scratch, student):
+def grade(rubric, package_dir, out_dir, scratch, student, student_user=None):
     started = time.monotonic()
-    session = Session(rubric, package_dir, out_dir)
-    lab = importlib.import_module('course_grader.labs.' + rubric.lab)
-    outcomes = {}
-    early = lab.static_checks(session) if hasattr(lab, 'static_checks') else {}
+    side = StudentSide(student_user, scratch)
+    session = Session(rubric, package_dir, out_dir, side)
+    lab = labs.LABS[rubric.lab]
+    outcomes = dict(lab.static_checks(session))
     try:
         overlay_env = build(session, scratch)
     except BuildFailed as error:
-        outcomes.update(early)
-        outcomes['builds'] = Outcome(False, str(error))
+        outcomes['builds'] = Verdict(False, str(error))
         return results.score(rubric, outcomes, student, error='not run: the package does not build',
                              seconds=time.monotonic() - started)
     print('grade_submission: built in %.1f s' % (time.monotonic() - started), flush=True)
-    outcomes['builds'] = Outcome(True, 'catkin_make built it')
-    outcomes.update(early)
-    os.environ.update(overlay_env)
+    outcomes['builds'] = Verdict(True, 'catkin_make built it')
     master = Master(os.path.join(out_dir, 'roscore.txt'))
+    # Only the student's side gets the overlay (and the master): the trusted side keeps the course's.
+    side.env = dict(overlay_env, ROS_MASTER_URI=os.environ['ROS_MASTER_URI'], HOME=side.home,
+                    ROS_HOME=side.env['ROS_HOME'], PYTHONDONTWRITEBYTECODE='1', ROSCONSOLE_STDOUT_LINE_BUFFERED='1')
     try:
         outcomes.update(lab.run_checks(session))
     finally:
@@ -180,19 +194,45 @@ def grade(rubric, package_dir, out_dir, scratch, student):
                          seconds=time.monotonic() - started)
 
 
+def send_folder(folder, stream):
+    """The output folder as a tar stream (regular files only) on `stream`."""
+    with tarfile.open(fileobj=stream, mode='w|') as archive:
+        for name in sorted(os.listdir(folder)):
+            path = os.path.join(folder, name)
+            if os.path.isfile(path) and not os.path.islink(path):
+                archive.add(path, arcname=name, recursive=False)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description='Grades one submission inside its sandbox.')
     parser.add_argument('--lab', required=True)
     parser.add_argument('--rubric', help='rubric file (default: the lab\'s)')
     parser.add_argument('--package', required=True, help='folder of the student\'s package')
-    parser.add_argument('--out', required=True)
-    parser.add_argument('--scratch', required=True, help='empty folder for the scratch workspace')
+    parser.add_argument('--out', required=True, help='output folder (private to this process with --send)')
+    parser.add_argument('--scratch', required=True, help='empty folder for the student\'s side')
     parser.add_argument('--student', required=True)
+    parser.add_argument('--student-user', help='run the student\'s side as this user (we are root)')
+    parser.add_argument('--send', action='store_true',
+                        help='send the output folder as a tar stream on standard output at the end')
     args = parser.parse_args(argv)
+    if args.send:   # standard output carries the result only: what we print goes to standard error
+        result_stream = os.fdopen(os.dup(1), 'wb')
+        os.dup2(2, 1)
     rubric = rubrics.load(args.rubric or args.lab)
-    os.environ.setdefault('ROS_HOME', os.path.join(args.scratch, 'ros_home'))
+    os.makedirs(args.out, mode=0o700, exist_ok=True)
+    os.makedirs(args.scratch, mode=0o1777 if args.student_user else 0o700, exist_ok=True)
+    if args.student_user:
+        os.chmod(args.scratch, 0o1777)   # the student's side makes its folders there
+    os.environ.setdefault('ROS_HOME', os.path.join(args.out + '.ros'))
     os.environ['PYTHONDONTWRITEBYTECODE'] = '1'
     os.environ['ROSCONSOLE_STDOUT_LINE_BUFFERED'] = '1'   # C++ nodes' lines as they print them
-    result = grade(rubric, args.package, args.out, args.scratch, args.student)
+    result = grade(rubric, args.package, args.out, args.scratch, args.student, args.student_user)
     results.write(result, args.out)
+    if args.send:
+        send_folder(args.out, result_stream)
+        result_stream.close()
     return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

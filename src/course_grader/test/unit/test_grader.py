@@ -1,10 +1,14 @@
 """The host side of the grader that runs no student code: the output folder and what comes back
 from a sandbox."""
+import io
 import os
+import subprocess
+import tarfile
 
 import pytest
 
 from course_grader import grader
+from course_testing.waiting import wait_until
 
 
 def test_out_folder_new_then_replaced_and_a_foreign_one_refused(tmp_path):
@@ -30,17 +34,39 @@ def test_only_regular_files_come_back_from_a_sandbox_within_the_size_limit(tmp_p
     (staging / 'huge.log').write_bytes(b'x' * 2000)
     os.symlink('/etc/passwd', str(staging / 'passwd.log'))
     (staging / 'sub').mkdir()
-    (staging / grader.PROCESS_GROUPS).write_text('1234\n')
     monkeypatch.setattr(grader, 'MAX_COPIED_BYTES', 1000)
     grader.copy_output(str(staging), str(folder))
     assert os.listdir(str(folder)) == ['build.log']
 
 
-def test_process_groups_left_by_a_session_are_killed(tmp_path):
-    import subprocess
-    sleeper = subprocess.Popen(['sleep', '60'], start_new_session=True)
-    listing = tmp_path / grader.PROCESS_GROUPS
-    listing.write_text('%d\n' % sleeper.pid)
-    grader.kill_process_groups(str(listing))
-    assert sleeper.wait(5) == -9
-    assert not listing.exists()
+def test_what_escaped_a_session_to_init_is_stopped_by_its_mark(tmp_path):
+    # As roslaunch's nodes: in a session of their own, reparented to init when their parent goes.
+    mark = 'COURSE_GRADER_RUN=test-%d' % os.getpid()
+    env = dict(os.environ, COURSE_GRADER_RUN=mark.split('=', 1)[1])
+    subprocess.run(['setsid', '-f', 'sleep', '600'], env=env, check=True)
+    subprocess.run(['setsid', '-f', 'bash', '-c', 'sleep 600 & sleep 600'], env=env, check=True)
+    try:
+        wait_until(lambda: len(grader.marked_processes(mark)) == 4, 10, 'the three sleeps and their bash')
+    finally:
+        assert grader.stop_marked(mark) == 4
+    assert grader.marked_processes(mark) == []
+
+
+def test_only_regular_files_of_the_trusted_sides_tar_stream_are_unpacked(tmp_path):
+    stream = io.BytesIO()
+    with tarfile.open(fileobj=stream, mode='w') as archive:
+        for name, kind in (('result.json', tarfile.REGTYPE), ('../escaped', tarfile.REGTYPE),
+                           ('sub/inner.log', tarfile.REGTYPE), ('link.log', tarfile.SYMTYPE), ('dir', tarfile.DIRTYPE)):
+            info = tarfile.TarInfo(name)
+            info.type = kind
+            data = b'{}' if kind == tarfile.REGTYPE else b''
+            info.size = len(data)
+            if kind == tarfile.SYMTYPE:
+                info.linkname = '/etc/passwd'
+            archive.addfile(info, io.BytesIO(data))
+    staging = tmp_path / 'staging'
+    staging.mkdir()
+    grader.unpack_output(stream.getvalue(), str(staging))
+    assert os.listdir(str(staging)) == ['result.json']
+    grader.unpack_output(b'not a tar stream', str(staging))   # a session that broke down: nothing more
+    assert not (tmp_path / 'escaped').exists()

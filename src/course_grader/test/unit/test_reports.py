@@ -5,17 +5,17 @@ import os
 import xml.etree.ElementTree as ET
 
 from course_grader import reports, results, rubric
-from course_grader.results import Outcome
+from course_checks.verdict import Verdict
 
 RUBRIC = rubric.load('move_turtlebot3')
 
 
 def alice():
     return results.score(RUBRIC, {
-        'builds': Outcome(True, 'built'), 'executable': Outcome(False, 'a.py is not executable', ['b.py too']),
-        'trajectory_rate': Outcome(True, 'ok'), 'trajectory_circle': Outcome(True, 'ok'),
-        'laser_data': Outcome(True, 'ok'), 'avoid_stops': Outcome(False, 'expected 0.35-0.5; seen 0.95 m'),
-        'avoid_stays': Outcome(True, 'ok')}, 'alice', pictures=['trajectory.png'], seconds=30)
+        'builds': Verdict(True, 'built'), 'executable': Verdict(False, 'a.py is not executable', ['b.py too']),
+        'trajectory_rate': Verdict(True, 'ok'), 'trajectory_circle': Verdict(True, 'ok'),
+        'laser_data': Verdict(True, 'ok'), 'avoid_stops': Verdict(False, 'expected 0.35-0.5; seen 0.95 m'),
+        'avoid_stays': Verdict(True, 'ok')}, 'alice', pictures=['trajectory.png'], seconds=30)
 
 
 def test_score_adds_the_points_of_passed_criteria_and_unchecked_ones_get_the_error():

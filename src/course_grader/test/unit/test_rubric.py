@@ -17,7 +17,7 @@ def test_move_turtlebot3_criteria_and_thresholds():
     assert [c.id for c in loaded.criteria] == ['builds', 'executable', 'trajectory_rate', 'trajectory_circle',
                                                'laser_data', 'avoid_stops', 'avoid_stays']
     assert loaded.max_score == 14
-    assert loaded.criterion('avoid_stops').get('front_max') == 0.5
+    assert loaded.criterion('avoid_stops')['front_max'] == 0.5
     assert '#! line' in loaded.criterion('executable').title
 
 

@@ -2,17 +2,13 @@
 core (no ROS): a recorder that missed poses must not fail a node that printed them all; made-up,
 constant and stale poses must fail."""
 import logging
-import os
 import random
-import sys
 
 import numpy
 import pytest
 
+from course_checks import printed_poses
 from turtlesim.world import TICK_SECONDS, World
-
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..'))
-import printed_poses  # noqa: E402  (lives beside the rostest nodes, one folder up)
 
 
 def drive(commands, start=None):

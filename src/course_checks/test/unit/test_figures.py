@@ -1,14 +1,11 @@
 """The measuring tools of the rostests, checked on figures whose answer is known."""
 import math
-import os
-import sys
 
 import numpy
 import pytest
 from PIL import Image, ImageDraw
 
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..'))
-import figures  # noqa: E402  (lives beside the rostest nodes, one folder up)
+from course_checks import figures
 
 
 def test_polygon_square_and_triangle_from_one_one():

@@ -1,0 +1,1 @@
+"""The checks a student's node is judged by, shared by the course's rostests and the grader."""

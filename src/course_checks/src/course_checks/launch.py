@@ -1,0 +1,81 @@
+"""A command (roslaunch, rosrun, a student's script) run as a student runs it, in a session of its
+own, its output kept line by line (bounded: a node printing without end stays within memory), and
+stopped as Ctrl-C in a terminal stops it."""
+import collections
+import os
+import re
+import signal
+import subprocess
+import threading
+
+from course_testing.processes import stop_process_group
+from course_testing.waiting import wait_until
+
+MAX_LINES = 5000             # lines of output kept in memory
+MAX_LOG_BYTES = 5 * 2 ** 20  # of output written to the log file
+COLOUR = re.compile(r'\x1b\[[0-9;]*m')   # rosconsole and roslaunch colour their lines
+
+
+class Launch:
+    """`argv` started in a session of its own (stdin closed, stdout and stderr together), with
+    `env` (default: ours) and, when given, as another `user` (the grader's sandbox runs the
+    student's side so); with `log_path`, the output is logged there too (the first MAX_LOG_BYTES)."""
+
+    def __init__(self, argv, log_path=None, env=None, user=None, cwd=None):
+        # Unbuffered, so that what the nodes print reaches us line by line, as in a terminal.
+        env = dict(os.environ if env is None else env, PYTHONUNBUFFERED='1')
+        as_user = {'user': user, 'group': user, 'extra_groups': []} if user else {}
+        self._lines = collections.deque(maxlen=MAX_LINES)
+        self._lock = threading.Lock()
+        self._log = open(log_path, 'w', errors='replace') if log_path else None
+        self.process = subprocess.Popen(list(argv), stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                        stderr=subprocess.STDOUT, env=env, cwd=cwd, text=True,
+                                        errors='replace', start_new_session=True, **as_user)
+        self._reader = threading.Thread(target=self._read, daemon=True)
+        self._reader.start()
+
+    def _read(self):
+        logged = 0
+        for line in self.process.stdout:
+            with self._lock:
+                self._lines.append(line.rstrip('\n'))
+            if self._log and logged < MAX_LOG_BYTES:
+                self._log.write(line)
+                logged += len(line)
+                if logged >= MAX_LOG_BYTES:
+                    self._log.write('\n[output cut here, %d bytes kept]\n' % MAX_LOG_BYTES)
+                self._log.flush()
+        if self._log:
+            self._log.close()
+
+    @property
+    def lines(self):
+        with self._lock:
+            return list(self._lines)
+
+    @property
+    def output(self):
+        return '\n'.join(self.lines)
+
+    def ended(self):
+        return self.process.poll() is not None
+
+    def wait_for_output(self, text, timeout):
+        return wait_until(lambda: text in self.output, timeout, what='%r in the output' % text)
+
+    def error_lines(self, count=2):
+        """The first lines that look like errors (roslaunch's red ones, exceptions), joined: a hint
+        of why nothing came of the command."""
+        lines = [COLOUR.sub('', line).strip() for line in self.lines]
+        errors = [line for line in lines if 'ERROR' in line or 'rror' in line or 'Exception' in line or 'not found' in line]
+        return ' | '.join(errors[:count]) or 'no error printed'
+
+    def stop(self, timeout=30):
+        """Ctrl-C, as in the terminal (roslaunch stops its nodes), killed after `timeout` seconds.
+        True when it stopped in time, False when it had to be killed, None when it had already ended."""
+        if self.process.poll() is not None:
+            self._reader.join(5)
+            return None
+        code = stop_process_group(self.process, timeout)
+        self._reader.join(5)
+        return code != -signal.SIGKILL

@@ -1,0 +1,113 @@
+"""turtlesim's turtles as the checks see them: their poses recorded, their speeds in turtlesim's own
+time, the circle a turtle drives, the poses a node printed, and moves no velocity explains (a
+teleport or a /reset, which the labs do not use)."""
+import math
+
+import numpy
+from turtlesim.msg import Pose
+
+from course_checks import figures, printed_poses
+from course_checks.verdict import Verdict
+from course_testing.recording import TopicRecorder, path_length
+
+POSE_RATE_HZ = 62.5  # turtlesim publishes the pose at every 16 ms tick
+TICK_SECONDS = 0.016
+JITTER = 0.25       # seconds a pose may arrive late on a busy machine (jumps)
+
+
+def turtle_poses(turtle):
+    """A recorder of the turtle's poses."""
+    return TopicRecorder('/%s/pose' % turtle, Pose)
+
+
+def pose_array(recorder):
+    """The poses recorded so far as rows of x, y, theta, linear_velocity, angular_velocity."""
+    return numpy.array([(pose.x, pose.y, pose.theta, pose.linear_velocity, pose.angular_velocity)
+                        for pose in recorder.messages()])
+
+
+def travelled(samples):
+    """Distance travelled along recorded (time, pose) entries, in metres."""
+    return path_length([(pose.x, pose.y) for _, pose in samples])
+
+
+def per_tick(samples):
+    """(distance, heading change) of one turtlesim tick, the median over consecutive poses: the
+    turtle's speed in turtlesim's own time (a fixed 16 ms a tick), which a busy machine that delays
+    the ticks does not change, and a pose lost on the way does not skew."""
+    steps = sorted(math.hypot(b.x - a.x, b.y - a.y) for (_, a), (_, b) in zip(samples, samples[1:]))
+    turns = sorted(math.remainder(b.theta - a.theta, 2 * math.pi) for (_, a), (_, b) in zip(samples, samples[1:]))
+    return steps[len(steps) // 2], turns[len(turns) // 2]
+
+
+def tick_speeds(samples):
+    """(linear m/s, angular rad/s) of the turtle in turtlesim's time, from per_tick."""
+    step, turn = per_tick(samples)
+    return step / TICK_SECONDS, turn / TICK_SECONDS
+
+
+def duration(samples):
+    return samples[-1][0] - samples[0][0]
+
+
+def turned(samples):
+    """Heading change along the recorded poses in radians (counter-clockwise positive, unwrapped)."""
+    return sum(math.remainder(b.theta - a.theta, 2 * math.pi)
+               for (_, a), (_, b) in zip(samples, samples[1:]))
+
+
+def jumps(samples):
+    """Moves between two heard poses that no velocity explains: (from (x, y), to (x, y)) of each.
+    turtlesim moves a turtle at most |linear_velocity| * 16 ms a tick; between two poses heard
+    dt seconds apart it had about dt / 16 ms ticks (JITTER more, for a pose a busy machine
+    delayed). Farther than that (or at all, standing still at both ends): a teleport or /reset."""
+    found = []
+    for (t_a, a), (t_b, b) in zip(samples, samples[1:]):
+        moved = math.hypot(b.x - a.x, b.y - a.y)
+        speed = max(abs(a.linear_velocity), abs(b.linear_velocity))
+        if moved > speed * (t_b - t_a + JITTER) + 1e-3:
+            found.append(((a.x, a.y), (b.x, b.y)))
+    return found
+
+
+def no_jumps(recorder, turtle):
+    """A failing verdict naming the first jump of the turtle, or None when it only drove."""
+    found = jumps(recorder.entries())
+    if not found:
+        return None
+    (x0, y0), (x1, y1) = found[0]
+    return Verdict(False, '%s jumped %d times without driving there, first from (%.2f, %.2f) to (%.2f, %.2f): '
+                   'a teleport or /reset, which this lab does not use' % (turtle, len(found), x0, y0, x1, y1))
+
+
+def full_turn(radius):
+    """How many moving poses make a full turn of a circle of `radius` at 1 m/s (and some)."""
+    return int(2 * math.pi / radius / TICK_SECONDS) + 10
+
+
+def moving_points(poses):
+    """(x, y) of the poses (pose_array rows) at which the turtle moved forward."""
+    return poses[poses[:, 3] > 0, :2] if len(poses) else poses
+
+
+def circle(points, centre, radius, tolerance=0.02):
+    """Points (N x 2) on a circle of `radius` around `centre`, within `tolerance` (relative): the
+    fitted radius, the fitted centre and every point."""
+    if len(points) < 3:
+        return Verdict(False, '%d moving poses, too few for a circle' % len(points))
+    centre_x, centre_y, fitted = figures.fit_circle(points)
+    off_centre = math.hypot(centre_x - centre[0], centre_y - centre[1])
+    off_circle = numpy.abs(numpy.hypot(points[:, 0] - centre[0], points[:, 1] - centre[1]) - radius).max()
+    limit = tolerance * radius
+    ok = abs(fitted - radius) <= limit and off_centre < limit and off_circle < limit
+    return Verdict(ok, 'a circle of radius %.3f m centred at (%.3f, %.3f), %.3f m from the expected centre, '
+                   'poses up to %.3f m off the expected circle (allowed %.3f m)' % (
+                       fitted, centre_x, centre_y, off_centre, off_circle, limit))
+
+
+def printed_poses_published(printed, recorder):
+    """The printed (x, y, theta) are poses the simulator published, in order, keeping up with the
+    turtle (printed_poses says how); the reason summarizes what was printed."""
+    judgement = printed_poses.judge(printed, pose_array(recorder))
+    wrong = printed_poses.problem(judgement)
+    return Verdict(not wrong, wrong or printed_poses.summary(judgement))
