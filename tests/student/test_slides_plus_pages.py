@@ -164,7 +164,9 @@ def test_move_turtlebot3_pasted_then_the_pages_edits_get_full_marks(student):
     output = rosrun('laser_data.py')
     quoted(student, output, r'from sensor msgs', lab)
     paste('laser_data.py', column_one, one_line_string, underscores)
-    assert 'Missing parentheses' in rosrun('laser_data.py')   # the page's Python 2 section
+    output = rosrun('laser_data.py')   # the page's section on Python 2 prints
+    quoted(student, output, r'laser_data\.py", line 9$', lab)
+    quoted(student, output, r"^SyntaxError: Missing parentheses in call to 'print'", lab)
     paste('trajectory.py', underscores)
     output = rosrun('trajectory.py')
     quoted(student, output, r'trajectory\.py", line 14$', lab)
