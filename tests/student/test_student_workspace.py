@@ -21,6 +21,8 @@ from course_testing.waiting import wait_until
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 COURSE_DEVEL = os.path.join(os.environ.get('CATKIN_BUILD_BASE', ROOT), 'devel')
 SLIDES = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'slides')
+# tools/new-workspace.sh on top of the build folder this test runs with (terminals start from nothing).
+NEW_WORKSPACE = 'CATKIN_BUILD_BASE=%s %s/tools/new-workspace.sh' % (os.path.dirname(COURSE_DEVEL), ROOT)
 # The messages docs/copying-the-slides/ quotes, as the student sees them.
 MISSING_PARENTHESES = "SyntaxError: Missing parentheses in call to 'print'. Did you mean print(...)?"
 NO_ROSPY = "ModuleNotFoundError: No module named 'rospy'"
@@ -99,16 +101,23 @@ class Student:
             target.write(text.replace(old, new))
 
 
-@pytest.fixture(scope='module')
-def student():
+def new_student():
+    """Someone with a home of their own and a workspace in it, made by tools/new-workspace.sh on top
+    of this one (the build folder CATKIN_BUILD_BASE names, if any); and what the script printed."""
     # A folder of its own, not pytest's tmp_path: pytest removes all but the last three of those,
     # and other pytest runs on a shared machine would delete this workspace under the test.
     someone = Student(tempfile.mkdtemp(prefix='student-home-'))
-    made = subprocess.run(someone._argv(
-        '%s/tools/new-workspace.sh ~/catkin_ws' % ROOT, source=False), cwd=someone.home,
-        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True, timeout=300)
+    made = subprocess.run(someone._argv(NEW_WORKSPACE + ' ~/catkin_ws', source=False),
+                          cwd=someone.home, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          universal_newlines=True, timeout=300)
     assert made.returncode == 0, made.stdout
-    assert 'source %s/devel/setup.bash' % someone.workspace in made.stdout
+    return someone, made.stdout
+
+
+@pytest.fixture(scope='module')
+def student():
+    someone, printed = new_student()
+    assert 'source %s/devel/setup.bash' % someone.workspace in printed
     yield someone
     someone.stop_all()
     shutil.rmtree(someone.home)
@@ -126,9 +135,9 @@ def test_the_new_workspace_gives_the_course_environment(student):
 
 
 def test_bad_folders_get_a_clear_error(student):
-    status, output = student.run('%s/tools/new-workspace.sh /etc/hostname' % ROOT, source=False)
+    status, output = student.run(NEW_WORKSPACE + ' /etc/hostname', source=False)
     assert status == 1 and 'exists and is not a folder' in output
-    status, output = student.run('%s/tools/new-workspace.sh ~' % ROOT, source=False)
+    status, output = student.run(NEW_WORKSPACE + ' ~', source=False)
     assert status == 1 and 'is not empty and has no src/' in output
 
 
