@@ -97,7 +97,8 @@ jobs_file="$LOGS/jobs.txt"
 ALONE=("pytest tests/network" "rostest fake_tb3/test/real_time.test" "rostest turtlesim/test/interface.test"
        "rostest ros_exercises/test/publisher_subscriber.test"
        "rostest compat/turtlebot3_teleop/test/teleop_key.test" "rostest my_turtle/test/stages.test"
-       "rostest turtlesim/test/programs.test" "rostest fake_tb3/test/sim_time.test")
+       "rostest turtlesim/test/programs.test" "rostest fake_tb3/test/sim_time.test"
+       "rostest turtlesim/test/sim_time.test")
 # add_job LABEL EXIT_CODES COMMAND...: one line of run_test_jobs.py's list (EXIT_CODES: the statuses
 # after which the command's result file tells the rest).
 add_job() {

@@ -7,11 +7,15 @@ without prefix, as Gazebo's TurtleBot3; with the private parameter `robots` (a l
 prefixed `<name>/`, as multi_turtlebot3 does.
 
 Threads: the main thread owns the simulation and runs its ticks. ROS callbacks never touch it:
-cmd_vel queues a request that the tick thread applies before its next tick (the model of
-turtlesim). A picture copies the simulation under a lock that every tick holds too, and is drawn
+cmd_vel submits a request (course_common.request_queue) that the simulation thread runs before its
+next tick. A picture copies the simulation under a lock that every tick holds too, and is drawn
 outside it.
+
+Speed (docs/benchmarks.md): each message is serialised once and only its changing fields are
+written at each tick (fake_tb3.prebuilt); rospy's writer threads send each subscriber's messages
+in batches (course_common.batched_writes); on simulated time the node sets its own rospy time
+instead of hearing its own /clock.
 """
-import collections
 import math
 import os
 import sys
@@ -22,22 +26,28 @@ import types
 import rosgraph.names
 import rospkg
 import rospy.core
+import rospy.impl.simtime
+import rospy.rostime
 import rospy
-import tf2_ros
-from geometry_msgs.msg import Quaternion, TransformStamped, Twist
+from geometry_msgs.msg import TransformStamped, Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu, JointState, LaserScan
 from std_msgs.msg import UInt32
 from std_srvs.srv import Trigger, TriggerResponse
+from tf2_msgs.msg import TFMessage
+
+from course_common import batched_writes
+from course_common.request_queue import RequestQueue
+from course_common.timing import Pacer, Periodic
 
 from fake_tb3.imu import ImuSensor
 from fake_tb3.kinematics import wheel_turns
 from fake_tb3.lidar import Laser
 from fake_tb3.models import UnknownModelError, get_model
 from fake_tb3.render import save_picture
+from fake_tb3.prebuilt import prebuilt
 from fake_tb3.simulation import CommandError, SimRobot, Simulation
-from fake_tb3.timing import Pacer, Periodic
 from fake_tb3.world import WorldError, load_world
 
 # The simulation's log object: its lines go to rosout.
@@ -48,10 +58,6 @@ ODOM_COVARIANCE_DIAGONAL = (1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3)
 
 class ConfigError(ValueError):
     """A parameter the simulator cannot run with."""
-
-
-def _quaternion(yaw):
-    return Quaternion(0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
 
 
 def _diagonal(values):
@@ -109,69 +115,92 @@ class RobotInterface:
             rospy.logwarn_throttle(1.0, notice)
 
     def _build_messages(self):
-        """The messages this robot publishes, with what never changes filled in once: rospy
-        serialises a message inside publish(), so each tick only updates the changing fields."""
+        """The messages this robot publishes, serialised once with what never changes (frames,
+        covariances, names, the scan's geometry): each tick writes only the changing fields into
+        their bytes (fake_tb3.prebuilt), so publishing costs no message building."""
         spec = self.robot.laser.spec
-        self.odom_message = Odometry()
-        self.odom_message.header.frame_id = self.frame('odom')
-        self.odom_message.child_frame_id = self.frame('base_footprint')
-        self.odom_message.pose.covariance = _diagonal(ODOM_COVARIANCE_DIAGONAL)
-        self.odom_message.twist.covariance = _diagonal(ODOM_COVARIANCE_DIAGONAL)
-        self.transform = TransformStamped()
-        self.transform.header.frame_id = self.frame('odom')
-        self.transform.child_frame_id = self.frame('base_footprint')
-        self.joints_message = JointState(name=['wheel_left_joint', 'wheel_right_joint'],
-                                         effort=[0.0, 0.0])
-        self.imu_message = Imu()
-        self.imu_message.header.frame_id = self.frame('imu_link')
-        self.imu_message.orientation_covariance = _diagonal((1e-6, 1e-6, 1e-6))
-        self.imu_message.angular_velocity_covariance = _diagonal((1e-6, 1e-6, 1e-6))
-        self.imu_message.linear_acceleration_covariance = _diagonal((1e-6, 1e-6, 1e-6))
-        self.scan_message = LaserScan(angle_min=spec.angle_min, angle_max=spec.angle_max,
-                                      angle_increment=spec.angle_increment,
-                                      range_min=spec.range_min, range_max=spec.range_max,
-                                      intensities=[0.0] * spec.samples)
-        self.scan_message.header.frame_id = self.frame('base_scan')
+        odom = Odometry()
+        odom.header.frame_id = self.frame('odom')
+        odom.child_frame_id = self.frame('base_footprint')
+        odom.pose.covariance = _diagonal(ODOM_COVARIANCE_DIAGONAL)
+        odom.twist.covariance = _diagonal(ODOM_COVARIANCE_DIAGONAL)
+        self.odom_message = prebuilt(odom, [
+            ('header.stamp.secs', 'I'), ('header.stamp.nsecs', 'I'),
+            ('pose.pose.position.x', 'd'), ('pose.pose.position.y', 'd'),
+            ('pose.pose.orientation.z', 'd'), ('pose.pose.orientation.w', 'd'),
+            ('twist.twist.linear.x', 'd'), ('twist.twist.angular.z', 'd')])
+        transform = TransformStamped()
+        transform.header.frame_id = self.frame('odom')
+        transform.child_frame_id = self.frame('base_footprint')
+        transform.transform.rotation.w = 1.0
+        self.tf_message = prebuilt(TFMessage([transform]), [
+            ('transforms.0.header.stamp.secs', 'I'), ('transforms.0.header.stamp.nsecs', 'I'),
+            ('transforms.0.transform.translation.x', 'd'),
+            ('transforms.0.transform.translation.y', 'd'),
+            ('transforms.0.transform.rotation.z', 'd'), ('transforms.0.transform.rotation.w', 'd')])
+        joints = JointState(name=['wheel_left_joint', 'wheel_right_joint'], position=[0.0, 0.0],
+                            velocity=[0.0, 0.0], effort=[0.0, 0.0])
+        self.joints_message = prebuilt(joints, [
+            ('header.stamp.secs', 'I'), ('header.stamp.nsecs', 'I'),
+            ('position.0', 'd'), ('position.1', 'd'), ('velocity.0', 'd'), ('velocity.1', 'd')])
+        imu = Imu()
+        imu.header.frame_id = self.frame('imu_link')
+        imu.orientation_covariance = _diagonal((1e-6, 1e-6, 1e-6))
+        imu.angular_velocity_covariance = _diagonal((1e-6, 1e-6, 1e-6))
+        imu.linear_acceleration_covariance = _diagonal((1e-6, 1e-6, 1e-6))
+        self.imu_message = prebuilt(imu, [
+            ('header.stamp.secs', 'I'), ('header.stamp.nsecs', 'I'),
+            ('orientation.z', 'd'), ('orientation.w', 'd'), ('angular_velocity.z', 'd'),
+            ('linear_acceleration.x', 'd'), ('linear_acceleration.y', 'd'),
+            ('linear_acceleration.z', 'd')])
+        scan = LaserScan(angle_min=spec.angle_min, angle_max=spec.angle_max,
+                         angle_increment=spec.angle_increment, range_min=spec.range_min,
+                         range_max=spec.range_max, ranges=[0.0] * spec.samples,
+                         intensities=[0.0] * spec.samples)
+        scan.header.frame_id = self.frame('base_scan')
+        self.scan_message = prebuilt(scan, [('header.stamp.secs', 'I'),
+                                            ('header.stamp.nsecs', 'I')],
+                                     array=('ranges', spec.samples))
 
-    def publish_odometry(self, stamp, broadcaster):
+    def publish_odometry(self, stamp, tf_publisher):
+        """odom, and its transform on /tf (what tf2_ros's broadcaster would send)."""
         robot = self.robot
-        orientation = _quaternion(robot.yaw)
-        odom = self.odom_message
-        odom.header.stamp = stamp
-        odom.pose.pose.position.x, odom.pose.pose.position.y = robot.x, robot.y
-        odom.pose.pose.orientation = orientation
-        odom.twist.twist.linear.x, odom.twist.twist.angular.z = robot.velocity
-        self.odom.publish(odom)
-        transform = self.transform
-        transform.header.stamp = stamp
-        transform.transform.translation.x, transform.transform.translation.y = robot.x, robot.y
-        transform.transform.rotation = orientation
-        broadcaster.sendTransform(transform)
+        half_yaw = robot.yaw / 2
+        qz, qw = math.sin(half_yaw), math.cos(half_yaw)
+        if self.odom.get_num_connections():
+            linear, angular = robot.velocity
+            self.odom_message.update(stamp.secs, stamp.nsecs, robot.x, robot.y, qz, qw,
+                                     linear, angular)
+            self.odom.publish(self.odom_message)
+        if tf_publisher.get_num_connections():
+            self.tf_message.update(stamp.secs, stamp.nsecs, robot.x, robot.y, qz, qw)
+            tf_publisher.publish(self.tf_message)
 
     def publish_joint_states(self, stamp):
-        robot = self.robot
-        message = self.joints_message
-        message.header.stamp = stamp
-        message.position = list(robot.wheel_angles)
-        message.velocity = list(wheel_turns(*robot.velocity, robot.model))  # in one second
-        self.joint_states.publish(message)
+        if self.joint_states.get_num_connections():
+            robot = self.robot
+            left, right = robot.wheel_angles
+            left_speed, right_speed = wheel_turns(*robot.velocity, robot.model)  # in one second
+            self.joints_message.update(stamp.secs, stamp.nsecs, left, right, left_speed,
+                                       right_speed)
+            self.joint_states.publish(self.joints_message)
 
     def publish_imu(self, stamp):
-        reading = self.imu_sensor.read(self.robot)
-        message = self.imu_message
-        message.header.stamp = stamp
-        message.orientation = _quaternion(reading.yaw)
-        message.angular_velocity.z = reading.angular_velocity
-        acceleration = message.linear_acceleration
-        acceleration.x, acceleration.y, acceleration.z = (
-            reading.acceleration_x, reading.acceleration_y, reading.acceleration_z)
-        self.imu.publish(message)
+        reading = self.imu_sensor.read(self.robot)  # every period: it differentiates the speed
+        if self.imu.get_num_connections():
+            half_yaw = reading.yaw / 2
+            self.imu_message.update(stamp.secs, stamp.nsecs, math.sin(half_yaw),
+                                    math.cos(half_yaw), reading.angular_velocity,
+                                    reading.acceleration_x, reading.acceleration_y,
+                                    reading.acceleration_z)
+            self.imu.publish(self.imu_message)
 
     def publish_scan(self, stamp, simulation):
-        message = self.scan_message
-        message.header.stamp = stamp
-        message.ranges = simulation.scan(self.robot).tolist()
-        self.scan.publish(message)
+        ranges = simulation.scan(self.robot)  # also without subscribers: pictures show it
+        if self.scan.get_num_connections():
+            self.scan_message.update(stamp.secs, stamp.nsecs)
+            self.scan_message.write_array(ranges)
+            self.scan.publish(self.scan_message)
 
 
 class FakeTb3Node:
@@ -179,7 +208,7 @@ class FakeTb3Node:
 
     def __init__(self):
         self.lock = threading.Lock()  # held by every tick and while a picture copies the simulation
-        self._requests = collections.deque()  # callables that ROS callbacks queue for the ticks
+        self.requests = RequestQueue()  # what ROS callbacks ask of the simulation thread
         self.use_sim_time = bool(rospy.get_param('/use_sim_time', False))
         self.real_time_factor = _number(rospy.get_param('~real_time_factor', 1.0),
                                         'real_time_factor')
@@ -211,8 +240,12 @@ class FakeTb3Node:
             (Periodic(rospy.get_param('~scan_rate', 5.0), 'scan_rate'), self._publish_scans),
         ]
         self.picture_at_shutdown = rospy.get_param('~picture_png', '')
-        self.broadcaster = tf2_ros.TransformBroadcaster()
-        self.clock = rospy.Publisher('/clock', Clock, queue_size=10) if self.use_sim_time else None
+        self.tf = rospy.Publisher('/tf', TFMessage, queue_size=100)  # as tf2_ros's broadcaster
+        self.clock = None
+        if self.use_sim_time:
+            self.clock = rospy.Publisher('/clock', Clock, queue_size=10)
+            self.clock_message = prebuilt(Clock(), [('clock.secs', 'I'), ('clock.nsecs', 'I')])
+            _stop_hearing_own_clock()
         self.interfaces = [RobotInterface(self, robot, robot.name + '/' if robot.name else '')
                            for robot in robots]
         rospy.Service('~save_picture', Trigger, self._on_save_picture)
@@ -257,8 +290,8 @@ class FakeTb3Node:
 
     # --- what happens at each tick -------------------------------------------------------------
     def submit(self, action):
-        """Queue action() for the tick thread, which applies it before its next tick."""
-        self._requests.append(action)
+        """Queue action() for the simulation thread, which runs it before its next tick."""
+        self.requests.submit(action)
 
     def _step_physics(self, stamp):
         began = self.simulation.step(1.0 / self.physics.rate)
@@ -266,11 +299,12 @@ class FakeTb3Node:
             if interface.robot in began:
                 interface.collisions.publish(UInt32(interface.robot.collisions))
         if self.clock:
-            self.clock.publish(Clock(stamp))
+            self.clock_message.update(stamp.secs, stamp.nsecs)
+            self.clock.publish(self.clock_message)
 
     def _publish_odometry(self, stamp):
         for interface in self.interfaces:
-            interface.publish_odometry(stamp, self.broadcaster)
+            interface.publish_odometry(stamp, self.tf)
 
     def _publish_joint_states(self, stamp):
         for interface in self.interfaces:
@@ -307,6 +341,7 @@ class FakeTb3Node:
     def spin(self):
         """Step and publish until shutdown; simulated time runs real_time_factor x wall time."""
         pacer = Pacer(self.real_time_factor, time.monotonic())
+        writer_turns = batched_writes.WriterTurns()
         while not rospy.is_shutdown():
             next_ns = min(periodic.next_ns for periodic, _ in self.schedules)
             due = pacer.due(next_ns)
@@ -316,10 +351,13 @@ class FakeTb3Node:
                 now = time.monotonic()
             pacer.reached(next_ns, now)
             # Simulated time starts at 0, as Gazebo's; real time stamps are the wall clock.
-            stamp = rospy.Time(0, next_ns) if self.use_sim_time else rospy.Time.now()
+            if self.use_sim_time:
+                stamp = rospy.Time(0, next_ns)
+                rospy.rostime._set_rostime(stamp)  # this node's own rospy time: see _stop_hearing_own_clock
+            else:
+                stamp = rospy.Time.now()
             with self.lock:
-                while self._requests:
-                    self._requests.popleft()()
+                self.requests.run_pending()
                 try:
                     for periodic, action in self.schedules:
                         if periodic.next_ns == next_ns:
@@ -329,6 +367,7 @@ class FakeTb3Node:
                     if rospy.core.is_shutdown_requested():  # publishers close early in shutdown
                         return
                     raise
+            writer_turns.maybe_yield()  # the messages go out while the simulation runs flat out
 
     def shutdown_picture(self):
         if self.picture_at_shutdown:
@@ -340,7 +379,18 @@ class FakeTb3Node:
                 print('fake_tb3: cannot write the picture %s: %s' % (path, err), file=sys.stderr)
 
 
+def _stop_hearing_own_clock():
+    """rospy subscribes a node on simulated time to /clock to learn the time; this node makes
+    that clock, and sets its rospy time itself at each tick instead of receiving its own 100
+    messages per simulated second."""
+    subscriber = getattr(rospy.impl.simtime, '_clock_sub', None)
+    if subscriber is not None:
+        subscriber.unregister()
+        rospy.impl.simtime._clock_sub = None
+
+
 def main():
+    batched_writes.install(rospy.topics)  # before any subscriber connects
     rospy.init_node('fake_tb3')
     try:
         node = FakeTb3Node()

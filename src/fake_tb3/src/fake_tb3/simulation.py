@@ -146,8 +146,9 @@ def _contact_fraction(robot, dt, blocked, free, segments, circles):
     return free
 
 
-def step_robot(robot, dt, segments, circles):
-    """Move `robot` for dt seconds with its command, stopping at the first contact.
+def step_robot(robot, dt, obstacles):
+    """Move `robot` for dt seconds with its command, stopping at the first contact. obstacles()
+    returns the (segments, circles) it may hit: asked for only when its free travel is used up.
 
     Returns True when this step began a new contact: the robot was free before, or it left the
     contact it was in (moved more than CONTACT_TOLERANCE) and met an obstacle again.
@@ -158,6 +159,7 @@ def step_robot(robot, dt, segments, circles):
     fraction = 1.0
     travel = sweep(robot, dt)
     if travel > robot.free_travel:
+        segments, circles = obstacles()
         overlap = _first_overlap(robot, dt, segments, circles)
         if overlap is not None:
             fraction = _contact_fraction(robot, dt, *overlap)
@@ -180,7 +182,7 @@ def step_robot(robot, dt, segments, circles):
     elif linear or angular:
         robot.in_contact = False
     if robot.free_travel <= 0.0 and travel > 0.0:
-        robot.free_travel = (clearance(robot.x, robot.y, segments, circles)
+        robot.free_travel = (clearance(robot.x, robot.y, *obstacles())
                              - robot.model.body_corner_radius)
     return began_contact
 
@@ -258,6 +260,17 @@ class Simulation:
                                                if other is not robot])
         return segments, self.world.circles
 
+    def _obstacles_once(self, robot):
+        """obstacles_for(robot), made on the first call only (each robot's step needs them
+        seldom: building them from every other robot's outline was most of a step's cost)."""
+        made = []
+
+        def obstacles():
+            if not made:
+                made.append(self.obstacles_for(robot))
+            return made[0]
+        return obstacles
+
     def overlapping(self, robot):
         """Whether robot's body overlaps an obstacle now (a spawn pose inside something)."""
         return bool(boxes_overlap(robot.pose, robot.box, *self.obstacles_for(robot))[0])
@@ -273,7 +286,7 @@ class Simulation:
             for robot, travel in zip(self.robots, travels):
                 robot.free_travel -= sum(travels) - travel
         began = [robot for robot in self.robots
-                 if step_robot(robot, dt, *self.obstacles_for(robot))]
+                 if step_robot(robot, dt, self._obstacles_once(robot))]
         self.time += dt
         for robot in began:
             self.log.warning('%s: collision at x %.3f y %.3f yaw %.3f: the body touches an '

@@ -1,27 +1,37 @@
 """turtlesim_node: the ROS interface of the world in turtlesim.world.
 
+The layer is made of:
+- TurtlesimNode (this module): the world, the tick thread, the global services (clear, reset,
+  spawn, kill) and the turtles' interfaces;
+- TurtleInterface (this module): one turtle's topics (pose, color_sensor, cmd_vel) and services
+  (set_pen, teleport_absolute, teleport_relative);
+- turtlesim.ticks: when the ticks fall (wall clock, or a simulated clock with /use_sim_time);
+- turtlesim.canvas_outputs: ~save_canvas, ~canvas and the PNG at shutdown; turtlesim.window: the
+  window. They read pictures through TurtlesimNode.snapshot() and never change the world.
+
 Threads: one tick thread owns the world and steps it every 16 ms. ROS callbacks (cmd_vel, service
-calls) never touch the world: they queue a request that the tick thread applies between two ticks,
-and a service call waits for its request to be applied and returns its result. Creating and
-removing a turtle's topics and services (slow calls to the master) happens in the service thread,
-so ticks stay on time. A turtle's topics and services are made all or none (a spawn that fails
-half-way removes what it made, and the turtle) and a kill gives all of them back; the topics share
-one epoll (turtlesim.shared_poll), so a turtle holds no open file of its own. Pictures (save_canvas,
-the ~canvas topic, the window) copy the world under a lock and are drawn outside it.
+calls) never touch the world: they submit a request (course_common.request_queue) that the tick
+thread runs between two ticks, and a service call waits for its request and returns its result.
+Creating and removing a turtle's topics and services (slow calls to the master) happens in the
+service thread, so ticks stay on time. A turtle's topics and services are made all or none (a spawn
+that fails half-way removes what it made, and the turtle) and a kill gives all of them back; the
+topics share one epoll (turtlesim.shared_poll), so a turtle holds no open file of its own. Only the
+turtles someone listens to are published (their publishers tell when a subscriber comes or goes),
+so 2000 turtles cost little more than the ones watched. Pictures copy the world under a lock and
+are drawn outside it.
 """
-import collections
 import os
 import signal
+import sys
 import threading
-import time
 
-import rospkg
 import rospy
 from geometry_msgs.msg import Twist
-from sensor_msgs.msg import Image
-from std_srvs.srv import Empty, EmptyResponse, Trigger, TriggerResponse
+from std_srvs.srv import Empty, EmptyResponse
 
+from course_common.request_queue import RequestQueue, Stopped
 from turtlesim import picture, shared_poll
+from turtlesim.canvas_outputs import CanvasOutputs
 from turtlesim.holdings import (LOW_FILE_LIMIT, Holdings, capacity_note, open_file_count, open_file_limit,
                                 raise_open_file_limit, spawn_refusal)
 from turtlesim.msg import Color, Pose
@@ -29,9 +39,9 @@ from turtlesim.scene_topic import SceneTopic
 from turtlesim.srv import (Kill, KillResponse, SetPen, SetPenResponse, Spawn, SpawnResponse,
                            TeleportAbsolute, TeleportAbsoluteResponse, TeleportRelative,
                            TeleportRelativeResponse)
-from turtlesim.world import DEFAULT_BACKGROUND, FLOAT32_MAX, TICK_SECONDS, TurtlesimError, World
+from turtlesim.ticks import make_ticks
+from turtlesim.world import DEFAULT_BACKGROUND, FLOAT32_MAX, TurtlesimError, World
 
-CANVAS_TOPIC_PERIOD = 1.0  # seconds between ~canvas images (only while someone subscribes)
 SHUTDOWN_POLL = 0.1  # how often a waiting service call checks whether the node is shutting down
 
 
@@ -52,18 +62,6 @@ def _float32(value):
     return min(max(value, -FLOAT32_MAX), FLOAT32_MAX)
 
 
-class _Request:
-    """A change to the world, made by the tick thread; the caller may wait for its result."""
-    __slots__ = ('action', 'waited', 'done', 'result', 'error')
-
-    def __init__(self, action, waited):
-        self.action = action
-        self.waited = waited  # False: nobody reads the result, so an error is logged as a warning
-        self.done = threading.Event()
-        self.result = None
-        self.error = None
-
-
 def _unregister(topic):
     topic.unregister()
 
@@ -80,9 +78,14 @@ class TurtleInterface:
     def __init__(self, node, name):
         self.name = name
         self.holdings = Holdings()
+        self.pose = self.color = None
+        self._watchers = node.watched  # where this turtle is listed while someone listens
+        listener = _Listeners(self)
         self.pose, self.color, _, _, _, _ = self.holdings.take_all([
-            ('pose publisher', lambda: rospy.Publisher(name + '/pose', Pose, queue_size=1), _unregister),
-            ('color_sensor publisher', lambda: rospy.Publisher(name + '/color_sensor', Color, queue_size=1),
+            ('pose publisher', lambda: rospy.Publisher(name + '/pose', Pose, queue_size=1,
+                                                       subscriber_listener=listener), _unregister),
+            ('color_sensor publisher', lambda: rospy.Publisher(name + '/color_sensor', Color, queue_size=1,
+                                                               subscriber_listener=listener),
              _unregister),
             ('cmd_vel subscriber',
              lambda: rospy.Subscriber(name + '/cmd_vel', Twist, node.on_cmd_vel, name, queue_size=1), _unregister),
@@ -95,9 +98,20 @@ class TurtleInterface:
              lambda: rospy.Service(name + '/teleport_relative', TeleportRelative,
                                    lambda req: node.teleport_relative(name, req)), _shut_down),
         ])
+        self.listened()  # a subscriber may have connected before both publishers existed
+
+    def listened(self):
+        """A pose or color_sensor subscriber came or went: (un)list this turtle for publishing."""
+        if self.pose is None or self.color is None:
+            return  # still being made: __init__ looks once both exist
+        if self.pose.get_num_connections() or self.color.get_num_connections():
+            self._watchers[self.name] = self
+        else:
+            self._watchers.pop(self.name, None)
 
     def close(self):
         """Give everything back; what cannot be is reported, and the rest is still given back."""
+        self._watchers.pop(self.name, None)
         for label, error in self.holdings.release_all():
             rospy.logwarn('Turtle [%s]: could not remove its %s: %s' % (self.name, label, error))
 
@@ -107,6 +121,20 @@ class TurtleInterface:
                                    _float32(turtle.wz)))
         if self.color.get_num_connections():
             self.color.publish(Color(*turtle.color))
+
+
+class _Listeners(rospy.SubscribeListener):
+    """Tells a turtle's interface when a subscriber of its pose or color_sensor comes or goes."""
+
+    def __init__(self, interface):
+        super().__init__()
+        self.interface = interface
+
+    def peer_subscribe(self, topic_name, topic_publish, peer_publish):
+        self.interface.listened()
+
+    def peer_unsubscribe(self, topic_name, num_peers):
+        self.interface.listened()
 
 
 class TurtlesimNode:
@@ -122,24 +150,23 @@ class TurtlesimNode:
         for channel, value in zip(('r', 'g', 'b'), DEFAULT_BACKGROUND):
             if not rospy.has_param('~background_' + channel):
                 rospy.set_param('~background_' + channel, value)
+        self.ticks = make_ticks()
         self.world = World(RosLog, self.read_background(), name_key=rospy.resolve_name)
         self.world_lock = threading.Lock()  # held while the world changes and while it is copied
         self.scene_topic = SceneTopic(self.world)  # ~scene, for a web viewer
-        self._requests = collections.deque()
+        self.requests = RequestQueue(expected=(TurtlesimError,),
+                                     on_error=lambda error: rospy.logwarn_throttle(1.0, str(error)))
         self._registry_lock = threading.Lock()  # one spawn/kill/reset changes the interfaces at a time
         self.interfaces = {}  # turtle name -> TurtleInterface; replaced as a whole, never mutated
+        self.watched = {}  # turtle name -> TurtleInterface of the turtles someone subscribes to
         self._sync_interfaces()
-        self.canvas_png_at_shutdown = rospy.get_param('~canvas_png', '')
         self._services = [
             rospy.Service('clear', Empty, self.clear),
             rospy.Service('reset', Empty, self.reset),
             rospy.Service('spawn', Spawn, self.spawn),
             rospy.Service('kill', Kill, self.kill),
-            rospy.Service('~save_canvas', Trigger, self.save_canvas),
         ]
-        self.canvas_pub = rospy.Publisher('~canvas', Image, queue_size=1,
-                                          subscriber_listener=_PublishOnConnect(self))
-        self._canvas_timer = rospy.Timer(rospy.Duration(CANVAS_TOPIC_PERIOD), self._publish_canvas)
+        self.canvas_outputs = CanvasOutputs(self.snapshot)
         self._tick_thread = threading.Thread(target=self._run_ticks, name='turtlesim-ticks', daemon=True)
 
     # --- parameters ---
@@ -161,69 +188,42 @@ class TurtlesimNode:
         self._tick_thread.start()
 
     def _run_ticks(self):
-        next_tick = time.monotonic()
-        while not rospy.is_shutdown():
-            delay = next_tick - time.monotonic()
-            if delay > 0.0:
-                time.sleep(delay)
-            elif delay < -TICK_SECONDS:  # fell behind (machine busy): skip the missed ticks, as a timer would
-                next_tick = time.monotonic()
+        running = lambda: not rospy.is_shutdown()  # noqa: E731
+        while running():
+            now = self.ticks.wait(running)
             with self.world_lock:
-                while self._requests:
-                    self._apply(self._requests.popleft(), next_tick)
-                self.world.tick(next_tick)
-                turtles = self.world.turtles()
-            interfaces = self.interfaces
-            for turtle in turtles:
-                interface = interfaces.get(turtle.name)
-                if interface is not None:
-                    interface.publish(turtle)
+                self.requests.run_pending(now)
+                self.world.tick(now)
+            # In the world's update order, as the original publishes; only those listened to.
+            watched = self.watched
+            if watched:
+                for turtle in self.world.turtles():
+                    interface = watched.get(turtle.name)
+                    if interface is not None:
+                        interface.publish(turtle)
             self.scene_topic.after_tick()
-            next_tick += TICK_SECONDS
-        self._fail_pending_requests()
-
-    def _apply(self, request, now):
-        try:
-            request.result = request.action(now)
-        except TurtlesimError as error:
-            request.error = error
-            if not request.waited:
-                rospy.logwarn_throttle(1.0, str(error))
-        request.done.set()
-
-    def _fail_pending_requests(self):
-        while self._requests:
-            request = self._requests.popleft()
-            request.error = TurtlesimError('turtlesim is shutting down')
-            request.done.set()
+        self.requests.fail_pending(TurtlesimError('turtlesim is shutting down'))
 
     def join(self):
         self._tick_thread.join()
 
     # --- requests ---
-    def submit(self, action, waited=False):
-        """Queue action(now) for the tick thread and return the request."""
-        request = _Request(action, waited)
-        self._requests.append(request)
-        return request
-
     def call(self, action):
         """Queue action(now), wait for the tick that applies it, and return its result.
 
         A TurtlesimError is logged as an ERROR and turned into a failed service call with its text.
         """
-        request = self.submit(action, waited=True)
-        while not request.done.wait(SHUTDOWN_POLL):
-            if rospy.is_shutdown():
-                raise rospy.ServiceException('turtlesim is shutting down')
-        if request.error is not None:
-            rospy.logerr(str(request.error))
-            raise rospy.ServiceException(str(request.error))
-        return request.result
+        try:
+            return self.requests.call(action, rospy.is_shutdown, SHUTDOWN_POLL)
+        except Stopped:
+            raise rospy.ServiceException('turtlesim is shutting down') from None
+        except TurtlesimError as error:
+            rospy.logerr(str(error))
+            raise rospy.ServiceException(str(error)) from None
 
     def on_cmd_vel(self, twist, name):
         values = (twist.linear.x, twist.linear.y, twist.angular.z)
-        self.submit(lambda now: self.world.command_velocity(name, *values, now))
+        self.requests.submit(lambda now: self.world.command_velocity(name, *values, now))
 
     def set_pen(self, name, req):
         self.call(lambda now: self.world.set_pen(name, req.r, req.g, req.b, req.width, req.off))
@@ -300,8 +300,9 @@ class TurtlesimNode:
 
     def _remove_from_world(self, name):
         """Take a turtle out of the world without a log line: undoing a spawn that failed."""
-        request = self.submit(lambda now: self.world.kill(name), waited=True)
-        while not request.done.wait(SHUTDOWN_POLL) and not rospy.is_shutdown():
+        try:
+            self.requests.call(lambda now: self.world.kill(name), rospy.is_shutdown, SHUTDOWN_POLL)
+        except (Stopped, TurtlesimError):
             pass
 
     # --- pictures ---
@@ -316,54 +317,6 @@ class TurtlesimNode:
             turtles = [_IconPose(turtle) for turtle in self.world.turtles()]
         return picture.compose(pixels, turtles)
 
-    @staticmethod
-    def canvas_path(param_value):
-        """Where ~canvas_png points: relative paths start at ROS_HOME, where roslaunch runs nodes."""
-        path = os.path.expanduser(str(param_value) if param_value else 'turtlesim_canvas.png')
-        return os.path.normpath(os.path.join(rospkg.get_ros_home(), path))
-
-    def write_canvas(self, path):
-        directory = os.path.dirname(path)
-        if directory:
-            os.makedirs(directory, exist_ok=True)
-        picture.save_png(self.snapshot(), path)
-
-    def save_canvas(self, _req):
-        path = self.canvas_path(rospy.get_param('~canvas_png', ''))
-        try:
-            self.write_canvas(path)
-        except (OSError, ValueError) as error:
-            message = 'Cannot save the canvas to %s: %s' % (path, error)
-            rospy.logerr(message)
-            return TriggerResponse(False, message)
-        return TriggerResponse(True, path)
-
-    def canvas_message(self):
-        image = self.snapshot()
-        message = Image()
-        message.header.stamp = rospy.Time.now()
-        message.header.frame_id = 'turtlesim_canvas'
-        message.height, message.width = image.shape[:2]
-        message.encoding = 'rgb8'
-        message.step = message.width * 3
-        message.data = image.tobytes()
-        return message
-
-    def _publish_canvas(self, _event):
-        if self.canvas_pub.get_num_connections():
-            self.canvas_pub.publish(self.canvas_message())
-
-    def save_at_shutdown(self):
-        if not self.canvas_png_at_shutdown:
-            return
-        path = self.canvas_path(self.canvas_png_at_shutdown)
-        try:
-            self.write_canvas(path)
-        except (OSError, ValueError) as error:
-            print('turtlesim: cannot save the canvas to %s: %s' % (path, error))
-            return
-        print('turtlesim: saved the canvas to %s' % path)
-
 
 class _IconPose:
     """The part of a turtle a picture needs, copied so that drawing can happen outside the lock."""
@@ -371,17 +324,6 @@ class _IconPose:
 
     def __init__(self, turtle):
         self.x, self.qt_y, self.theta, self.icon = turtle.x, turtle.qt_y, turtle.theta, turtle.icon
-
-
-class _PublishOnConnect(rospy.SubscribeListener):
-    """A new ~canvas subscriber gets a picture at once instead of waiting for the next period."""
-
-    def __init__(self, node):
-        super().__init__()
-        self.node = node
-
-    def peer_subscribe(self, topic_name, topic_publish, peer_publish):
-        peer_publish(self.node.canvas_message())
 
 
 def _wants_window():
@@ -400,7 +342,11 @@ def _stop_on_signals():
 
 def main():
     stop = _stop_on_signals()
-    node = TurtlesimNode()
+    try:
+        node = TurtlesimNode()
+    except ValueError as error:  # a parameter it cannot run with
+        rospy.logfatal('turtlesim: %s' % error)
+        sys.exit(1)
     node.start()
 
     def running():
@@ -413,4 +359,4 @@ def main():
             stop.wait(SHUTDOWN_POLL)
     rospy.signal_shutdown('Ctrl-C' if stop.is_set() else 'shut down')
     node.join()
-    node.save_at_shutdown()
+    node.canvas_outputs.save_at_shutdown()

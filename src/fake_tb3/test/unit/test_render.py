@@ -1,6 +1,4 @@
-"""Periodic ticks on the simulated clock, and the top-down picture's contents."""
-import math
-
+"""The top-down picture's contents."""
 import numpy as np
 import pytest
 
@@ -8,34 +6,7 @@ from fake_tb3.lidar import Laser
 from fake_tb3.models import get_model
 from fake_tb3.render import FLOOR, OBSTACLE, ROBOT_COLOURS, SCAN, render, save_picture
 from fake_tb3.simulation import SimRobot, Simulation
-from fake_tb3.timing import Pacer, Periodic
 from fake_tb3.world import load_world
-
-
-def test_periodic_keeps_the_exact_rate():
-    odom = Periodic(30.0)
-    ticks = []
-    while odom.next_ns <= 10 * 10 ** 9:
-        ticks.append(odom.next_ns)
-        odom.advance()
-    assert len(ticks) == 300 and ticks[-1] == 10 * 10 ** 9
-    assert set(np.diff(ticks)) == {33333333, 33333334}
-    for bad in (0, -5, math.inf, 'fast'):
-        with pytest.raises(ValueError, match='odom_rate must be a'):
-            Periodic(bad, 'odom_rate')
-
-
-def test_pacer_runs_simulated_time_at_the_factor_and_gives_up_catching_up():
-    pacer = Pacer(10.0, start_wall=100.0)
-    assert pacer.due(10 ** 9) == pytest.approx(100.1)  # 1 simulated second, 0.1 wall second
-    pacer.reached(10 ** 9, now=100.3)  # 0.2 s late: catches up
-    assert pacer.due(2 * 10 ** 9) == pytest.approx(100.2)
-    pacer.reached(2 * 10 ** 9, now=101.0)  # 0.8 s late: carries on from here
-    assert pacer.due(3 * 10 ** 9) == pytest.approx(101.1)
-    assert Pacer(0.5, start_wall=0.0).due(10 ** 9) == pytest.approx(2.0)
-    for bad in (0.0, -1.0, math.inf, math.nan):
-        with pytest.raises(ValueError, match='real_time_factor must be a positive number'):
-            Pacer(bad, start_wall=0.0)
 
 
 def test_picture_shows_world_robot_trail_and_scan(tmp_path):

@@ -1,0 +1,183 @@
+#!/usr/bin/env python3
+"""Where a simulated second of fake_tb3 goes: one robot in turtlebot3_world, every topic at its
+simulated rate with a subscriber on each (raw, in this process: fake_tb3_bench.RawSubscriber), the
+simulator as fast as it can run,
+profiled (cProfile, the simulation's thread) for a few wall seconds.
+
+Prints the real-time factor reached, the simulator's CPU split between its simulation thread and
+rospy's threads, a breakdown of the simulation thread's time per simulated second (physics, ray
+cast, message building, serialisation, handing messages to rospy, TF, /clock, pacing), and the
+top functions by own time. Run after `source tools/env.sh`:
+
+    bench/fake_tb3_profile.py [--seconds 8] [--top 5]
+"""
+import argparse
+import os
+import pstats
+import subprocess
+import sys
+import tempfile
+import time
+
+import rospy
+from geometry_msgs.msg import Twist
+
+from course_testing.processes import stop_process_group
+from course_testing.waiting import wait_until
+from fake_tb3_bench import TopicCounter, start_master
+
+# Run inside the simulator's process: the node under cProfile, then its CPU times to a file.
+PROFILED_NODE = '''
+import cProfile, sys, threading, time
+import fake_tb3.node
+profile = cProfile.Profile()
+profile.enable()
+try:
+    fake_tb3.node.main()
+finally:
+    profile.disable()
+    profile.dump_stats(sys.argv[1])
+    with open(sys.argv[2], 'w') as out:
+        out.write('%f %f' % (time.thread_time(), time.process_time()))
+'''
+
+
+def _entries(stats, file_part, name):
+    """pstats entries (key, value) whose file ends with file_part and function is name."""
+    return [(key, value) for key, value in stats.stats.items()
+            if key[0].endswith(file_part) and key[2] == name]
+
+
+def _cumulative(stats, file_part, name, caller=None, first_only=False):
+    """Cumulative seconds of a function (only its calls from `caller`, (file part, name), if given;
+    first_only: only the function of that name defined first in the file)."""
+    entries = sorted(_entries(stats, file_part, name), key=lambda entry: entry[0][1])
+    total = 0.0
+    for _, (_, _, _, cumulative, callers) in entries[:1] if first_only else entries:
+        if caller is None:
+            total += cumulative
+            continue
+        for caller_key, timing in callers.items():
+            if caller_key[0].endswith(caller[0]) and caller_key[2] == caller[1]:
+                total += timing[3]
+    return total
+
+
+def breakdown(stats):
+    """(total, [(part, seconds)]) of the simulation thread's wall time; parts named 'of which'
+    are inside the part above them."""
+    node = 'fake_tb3/node.py'
+    physics = _cumulative(stats, 'fake_tb3/simulation.py', 'step')
+    raycast = _cumulative(stats, 'fake_tb3/simulation.py', 'scan')
+    serialise = _cumulative(stats, 'rospy/msg.py', 'serialize_message')
+    # rospy.Publisher.publish (the first `publish` of rospy/topics.py): serialise, then hand the
+    # bytes to each connection (a queue, a notify and a time.sleep(0) that lets rospy's writer
+    # thread run: the simulation thread waits for the GIL meanwhile).
+    publish = _cumulative(stats, 'rospy/topics.py', 'publish', first_only=True)
+    handover = (_cumulative(stats, 'rospy/impl/tcpros_pubsub.py', 'write_data')
+                + _cumulative(stats, 'course_common/batched_writes.py', 'write_data'))
+    turns = _cumulative(stats, 'course_common/batched_writes.py', 'maybe_yield')
+    tf = _cumulative(stats, 'tf2_ros/transform_broadcaster.py', 'sendTransform')
+    clock = sum(_cumulative(stats, 'rospy/topics.py', 'publish', (node, caller), first_only=True)
+                for caller in ('_step_physics', 'publish_clock'))
+    in_publishers = sum(_cumulative(stats, node, name) for name in (
+        'publish_odometry', 'publish_joint_states', 'publish_imu', 'publish_scan',
+        '_step_physics', '_publish_tick'))
+    sleep = _cumulative(stats, '~', '<built-in method time.sleep>', (node, 'spin'))
+    total = max(value[3] for value in stats.stats.values())
+    parts = [('physics (Simulation.step)', physics),
+             ('ray cast (Simulation.scan)', raycast),
+             ('serialisation (serialize_message)', serialise),
+             ('handing the bytes to rospy\'s writer threads (write_data)', handover),
+             ('rospy\'s publish() around those two', publish - serialise - handover),
+             ('of which TF, all of sendTransform', tf),
+             ('of which /clock, all of its publish()', clock),
+             ('message building (the rest of the publishing functions)',
+              in_publishers - physics - raycast - publish),
+             ('letting rospy\'s writer threads run, waiting for subscribers', turns),
+             ('pacing (time.sleep in the loop)', sleep)]
+    parts.append(('the rest (loop, requests)',
+                  total - sum(value for name, value in parts if not name.startswith('of which'))))
+    return total, parts
+
+
+def profile(seconds, top):
+    core = start_master()
+    folder = tempfile.mkdtemp(prefix='fake_tb3_profile_')
+    stats_path, cpu_path = os.path.join(folder, 'node.prof'), os.path.join(folder, 'cpu')
+    try:
+        rospy.init_node('fake_tb3_profile', disable_signals=True)
+        name = 'profiled'
+        spawn = {'name': 'tb3_0', 'model': 'burger', 'x_pos': -2.0, 'y_pos': -0.5, 'yaw': 0.0}
+        rospy.set_param('/use_sim_time', True)
+        rospy.set_param('/%s/world' % name, 'turtlebot3_world')
+        rospy.set_param('/%s/real_time_factor' % name, 1000.0)
+        rospy.set_param('/%s/robots' % name, [spawn])
+        node = subprocess.Popen(['/usr/bin/python3', '-c', PROFILED_NODE, stats_path, cpu_path,
+                                 '__name:=' + name], stdout=subprocess.DEVNULL,
+                                stderr=subprocess.DEVNULL, start_new_session=True)
+        counter = TopicCounter([spawn], raw=True)
+        cmd_vel = rospy.Publisher('/tb3_0/cmd_vel', Twist, queue_size=1, latch=True)
+        try:
+            wait_until(cmd_vel.get_num_connections, 60, 'the simulator to start', poll=0.1)
+            counter.connect()
+            wait_until(lambda: len(counter.clock) >= 10, 30, '/clock', poll=0.1)
+            twist = Twist()
+            twist.angular.z = 0.5
+            cmd_vel.publish(twist)
+            time.sleep(1.0)
+            first_wall, first_clock = counter.clock[-1]
+            counter.start = first_clock
+            time.sleep(seconds)
+            last_wall, last_clock = counter.clock[-1]
+        finally:
+            stop_process_group(node, 30)
+            counter.close()
+        simulated = (last_clock - first_clock).to_sec()
+        factor = simulated / (last_wall - first_wall)
+        stats = pstats.Stats(stats_path)
+        with open(cpu_path) as cpu_file:
+            thread_cpu, process_cpu = (float(value) for value in cpu_file.read().split())
+    finally:
+        stop_process_group(core, 30)
+    total, parts = breakdown(stats)
+    # Per simulated second over the whole profiled run (start-up excluded as far as possible:
+    # the run's simulated length is the last /clock the node reached).
+    run_simulated = max(last_clock.to_sec(), 1e-9)
+    print('real-time factor %.1fx over %.1f wall s; simulator CPU: %.2f s in its simulation '
+          'thread, %.2f s in all threads (%.0f %% in rospy\'s other threads); load average %.1f'
+          % (factor, last_wall - first_wall, thread_cpu, process_cpu,
+             100 * (1 - thread_cpu / process_cpu), os.getloadavg()[0]))
+    print()
+    print('| part of the simulation thread | ms per simulated second | share |')
+    print('|---|--:|--:|')
+    for part, value in parts:
+        print('| %s | %.2f | %.0f %% |' % (part, 1e3 * value / run_simulated, 100 * value / total))
+    print()
+    print('Top %d functions by own time (ms per simulated second):' % top)
+    print()
+    print('| function | own ms / sim s | calls / sim s |')
+    print('|---|--:|--:|')
+    rows = sorted(stats.stats.items(), key=lambda item: -item[1][2])
+    shown = 0
+    for (path, line, function), (_, calls, own, _, _) in rows:
+        if function in ('<built-in method time.sleep>',):
+            continue  # waiting, not work
+        print('| %s (%s:%d) | %.2f | %.0f |' % (function, '/'.join(path.split('/')[-2:]), line,
+                                               1e3 * own / run_simulated, calls / run_simulated))
+        shown += 1
+        if shown == top:
+            break
+    sys.stdout.flush()
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    parser.add_argument('--seconds', type=float, default=8.0, help='wall seconds profiled')
+    parser.add_argument('--top', type=int, default=5, help='functions listed')
+    args = parser.parse_args()
+    profile(args.seconds, args.top)
+
+
+if __name__ == '__main__':
+    main()
