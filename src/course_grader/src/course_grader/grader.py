@@ -201,7 +201,8 @@ class Grader:
             rubric_mount = ['-v', '%s:/rubric.yaml:ro' % os.path.abspath(self.args.rubric)]
             rubric = '/rubric.yaml'
         # --init: a reaper as PID 1, so that what the submission forks and leaves behind is reaped.
-        command = ['docker', 'run', '--name', name, '--init', '--network', 'none', '--user', 'student',
+        # --rm as well as the rm -f below: the engine removes it even if this process is killed.
+        command = ['docker', 'run', '--rm', '--name', name, '--init', '--network', 'none', '--user', 'student',
                    '--read-only', '--security-opt', 'no-new-privileges', '--cap-drop', 'ALL',
                    '-e', 'ROS_HOME=/tmp/ros', '-e', 'HOME=/tmp/home',
                    '-v', '%s:/submission:ro' % submission, '-v', '%s:/out' % staging] + rubric_mount \
