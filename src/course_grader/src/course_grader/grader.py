@@ -225,7 +225,8 @@ class Grader:
         name = 'course-grader-%s-%s' % (self.run_id, student)
         rubric_mount = ['-v', '%s:/rubric.yaml:ro' % os.path.abspath(self.args.rubric)] if self.args.rubric else []
         # --init: a reaper as PID 1, so that what the submission forks and leaves behind is reaped.
-        command = ['docker', 'run', '--name', name, '--init', '--network', 'none', '--user', 'root',
+        # --rm as well as the rm -f below: the engine removes it even if this process is killed.
+        command = ['docker', 'run', '--rm', '--name', name, '--init', '--network', 'none', '--user', 'root',
                    '--read-only', '--security-opt', 'no-new-privileges'] + TRUSTED_CAPABILITIES + [
                    '-e', 'HOME=/tmp/grader', '-e', 'ROS_HOME=/tmp/grader/ros',
                    '-v', '%s:/submission:ro' % submission] + rubric_mount + CONTAINER_LIMITS + [
