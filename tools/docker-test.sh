@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds the image from docker/ and runs the test command inside it (as the non-root user `student`).
+# Builds the image from docker/ and runs the test command inside it (as the non-root user `student`),
+# then checks that the image serves the browser view of a lab to the outside (tools/docker-view-check.py).
 # Usage: tools/docker-test.sh [SUITE]      (Debian suite of the image: trixie, the default, or bookworm)
 # tools/docker.sh reaches or starts the engine and makes the image; a dockerd started here is stopped.
 set -euo pipefail
@@ -11,3 +12,5 @@ course_docker_engine
 image=$(course_docker_image "${1:-trixie}")
 echo "docker-test: running the tests in $image (user $(docker run --rm "$image" id -un))"
 docker run --rm --network host "$image" ./test.sh
+# The browser view as the image serves it (docker/entrypoint.sh), seen from outside the container.
+/usr/bin/python3 "$ROOT/tools/docker-view-check.py" "$image"
