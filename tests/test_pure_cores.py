@@ -11,7 +11,8 @@ import pytest
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PACKAGES = {
     'turtlesim': ('src/turtlesim/src/turtlesim',
-                  {'node', 'window', 'teleop_key', 'draw_square', 'mimic', 'scene_topic'}),
+                  {'node', 'window', 'teleop_key', 'draw_square', 'mimic', 'scene_topic',
+                   'ticks', 'canvas_outputs'}),
     'fake_tb3': ('src/fake_tb3/src/fake_tb3', {'node', 'turtlebot3_drive_node'}),
     'course_web': ('src/course_web/src/course_web', {'ros_view', 'follow_master'}),
 }
