@@ -40,13 +40,21 @@ class Launch:
             with self._lock:
                 self._lines.append(line.rstrip('\n'))
             if self._log and logged < MAX_LOG_BYTES:
-                self._log.write(line)
-                logged += len(line)
-                if logged >= MAX_LOG_BYTES:
-                    self._log.write('\n[output cut here, %d bytes kept]\n' % MAX_LOG_BYTES)
-                self._log.flush()
+                try:
+                    self._log.write(line)
+                    logged += len(line)
+                    if logged >= MAX_LOG_BYTES:
+                        self._log.write('\n[output cut here, %d bytes kept]\n' % MAX_LOG_BYTES)
+                    self._log.flush()
+                except OSError:
+                    # A full disk ends the log, never the reading: a pipe nobody drains would stop
+                    # the program at its next line (roscore's master, holding its lock, stops them all).
+                    logged = MAX_LOG_BYTES
         if self._log:
-            self._log.close()
+            try:
+                self._log.close()
+            except OSError:
+                pass
 
     @property
     def lines(self):

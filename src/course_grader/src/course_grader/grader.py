@@ -28,7 +28,9 @@ MAX_COPIED_BYTES = 50 * 2 ** 20      # of what one sandbox leaves in its output 
 TRUSTED_CAPABILITIES = ['--cap-drop', 'ALL', '--cap-add', 'SETUID', '--cap-add', 'SETGID', '--cap-add', 'KILL']
 CONTAINER_LIMITS = ['--memory', '1536m', '--memory-swap', '1536m', '--pids-limit', '512',
                     '--cpus', '1', '--ulimit', 'nofile=1024:1024', '--ulimit', 'fsize=104857600',
-                    '--tmpfs', '/tmp:rw,exec,nosuid,nodev,size=512m']
+                    '--tmpfs', '/tmp:rw,exec,nosuid,nodev,size=512m',
+                    # The trusted side's own disk: a submission that fills /tmp cannot stop its logs.
+                    '--tmpfs', '/grader:rw,noexec,nosuid,nodev,size=128m,mode=0700']
 
 
 class GraderError(Exception):
@@ -228,11 +230,11 @@ class Grader:
         # --rm as well as the rm -f below: the engine removes it even if this process is killed.
         command = ['docker', 'run', '--rm', '--name', name, '--init', '--network', 'none', '--user', 'root',
                    '--read-only', '--security-opt', 'no-new-privileges'] + TRUSTED_CAPABILITIES + [
-                   '-e', 'HOME=/tmp/grader', '-e', 'ROS_HOME=/tmp/grader/ros',
+                   '-e', 'HOME=/grader', '-e', 'ROS_HOME=/grader/ros',
                    '-v', '%s:/submission:ro' % submission] + rubric_mount + CONTAINER_LIMITS + [
-                   self.args.image, 'bash', '-c', 'mkdir -p -m 0700 /tmp/grader && source tools/env.sh && exec '
+                   self.args.image, 'bash', '-c', 'source tools/env.sh && exec '
                    'rosrun course_grader grade_submission "$@"', 'grade_submission', '--student-user', 'student',
-                   '--send'] + self._session_args('/submission/' + package, '/tmp/grader/out', '/tmp/student', student)
+                   '--send'] + self._session_args('/submission/' + package, '/grader/out', '/tmp/student', student)
         log = os.path.join(staging, 'grader.txt')
         sent = b''
         try:
