@@ -6,6 +6,7 @@ import rospy
 import rostest
 
 from course_checks.figures import fit_circle
+from course_checks.rates import kept_rate
 from move_turtlebot3_testing import LabTestCase, Launch
 
 
@@ -28,10 +29,9 @@ class TrajectoryTest(LabTestCase):
         self.assertAlmostEqual(numpy.hypot(centre_x, centre_y), expected, delta=0.05 * expected)
         # counter-clockwise for a positive turn rate: the centre is to the robot's left (+y)
         self.assertGreater(centre_y, 0)
-        # the commands come at 1 Hz of simulated time (the median interval: a node that starts
-        # before the first /clock sends two or three at once while rospy.Rate catches up)
+        # the commands come at 1 Hz of simulated time
         commands = [t for t, _, _ in self.watch.copy('commands') if t is not None and t >= start]
-        rate = 1 / numpy.median(numpy.diff(commands))
+        rate = kept_rate(commands)
         self.assertAlmostEqual(rate, 1.0, delta=0.1)
         print('circle of %.2f m/s and %.2f rad/s, noise %.2f: radius %.4f m (expected %.4f), '
               'commands at %.3f Hz' % (linear, angular, noise, radius, expected, rate))

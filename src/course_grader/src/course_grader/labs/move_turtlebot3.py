@@ -2,7 +2,7 @@
 the checks of course_checks that move_turtlebot3's own tests use."""
 import math
 
-from course_checks import figures, laser
+from course_checks import figures, laser, rates
 from course_checks.robot import SIMULATOR, RobotWatch, largest_move, travelled
 from course_checks.verdict import Verdict
 from course_checks.waiting import Deadline, wait_for
@@ -120,10 +120,7 @@ def check_trajectory(session):
         outcomes = {}
         # Rate and values of the commands, in simulated time.
         tolerance = rate_c['speed_tolerance']
-        if len(commands) >= 2:
-            rate = (len(commands) - 1) / (commands[-1][0] - commands[0][0] or 1e-9)
-        else:
-            rate = 0.0
+        rate = rates.kept_rate([t for t, _, _ in commands]) if len(commands) >= 2 else 0.0
         wrong = [(lin, ang) for _, lin, ang in commands
                  if abs(lin - linear) > tolerance or abs(ang - angular) > tolerance]
         rate_ok = abs(rate - rate_c['rate_hz']) <= rate_c['rate_tolerance']
