@@ -66,6 +66,12 @@ def test_example_class_in_containers(lab, tmp_path):
     assert sorted(rows) == students
     assert mismatches(lab, rows, details, students) == []
     assert outscored_twins(lab, rows) == []   # every attempt costs only the attempt
+    # The model's nodes print what they print, and nothing of the sandbox (a ROS_HOME they cannot write).
+    model_logs = [name for name in os.listdir(os.path.join(out, 'model')) if name.endswith('.log')]
+    assert model_logs
+    for name in model_logs:
+        with open(os.path.join(out, 'model', name), errors='replace') as stream:
+            assert 'cannot create log directory' not in stream.read(), name
     assert os.path.isfile(os.path.join(out, 'report.html'))
     assert sorted(os.listdir(os.path.join(out, 'junit'))) == sorted(s + '.xml' for s in students)
     # Nothing left running, nothing written where the hostile one tried to write.

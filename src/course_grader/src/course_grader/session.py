@@ -120,9 +120,12 @@ def build(session, scratch):
     package = os.path.join(workspace, 'src', session.rubric.package)
     log = session.log_path('build.log')
     seconds = session.rubric.limits['build_seconds']
-    code = run_logged(side, ['bash', '-c', 'mkdir -p "$1" "$2" "$3/src" && cp -R "$4" "$5" && exec catkin_make '
-                             '--directory "$3" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -j1',
-                             'build', side.home, side.pictures, workspace, session.package_dir, package],
+    # ROS_HOME made here, by the student's user: rospy would give a log folder it makes the owner of
+    # its parent (root's scratch folder), fail to, and print a warning into every node's output.
+    code = run_logged(side, ['bash', '-c', 'mkdir -p "$1" "$2" "$3" "$4/src" && cp -R "$5" "$6" && exec catkin_make '
+                             '--directory "$4" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -j1',
+                             'build', side.home, side.pictures, side.env['ROS_HOME'], workspace,
+                             session.package_dir, package],
                       log, seconds)
     if code != 0:
         with open(log, errors='replace') as stream:
