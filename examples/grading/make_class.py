@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Writes an example class as a teacher gets it: one folder per student of examples/grading/LAB/
-expected.yaml, the ones made by one change to the model (STUDENT.patch, git's format) included.
+expected.yaml, the ones made by one change to the model (STUDENT.patch, a unified diff for GNU
+patch) included.
 Usage: examples/grading/make_class.py LAB OUT   (then: ./grade.sh LAB OUT/* --out grades)"""
 import os
 import shutil
@@ -24,7 +25,9 @@ def make_class(lab, out):
         if os.path.exists(patch):   # the model with one change
             model = os.path.realpath(os.path.join(folder, 'model'))
             shutil.copytree(model, os.path.join(target, os.path.basename(model)), symlinks=True)
-            subprocess.run(['git', 'apply', '--whitespace=nowarn', patch], cwd=target, check=True)
+            # patch, not git: the course image has no git.
+            subprocess.run(['patch', '-p1', '--batch', '--quiet', '--no-backup-if-mismatch', '-i', patch], cwd=target,
+                           check=True)
         else:
             shutil.copytree(os.path.realpath(os.path.join(folder, student)), target, symlinks=True)
         paths.append(target)
