@@ -1,0 +1,101 @@
+"""The student's command: `rosrun course_grader check LAB [PACKAGE_PATH] [--only ID]` grades the
+student's own package with the lab's rubric on this machine (the teacher's grading with
+--no-container, same rubric, same verdicts) and prints each criterion in the terminal."""
+import argparse
+import os
+import sys
+import tempfile
+import time
+
+from course_grader import rubric as rubrics
+from course_grader.grader import Grader
+from course_grader.submission import package_name
+
+COUNTS = ('This is your own check: the teacher\'s run, in a container, is the one that counts.')
+
+
+class CheckError(Exception):
+    """The check cannot run at all: one sentence, exit status 2."""
+
+
+def _rospack_path(name):
+    import rospkg
+    try:
+        return rospkg.RosPack().get_path(name)
+    except rospkg.ResourceNotFound:
+        return None
+
+
+def project_src():
+    """The source folder of the project's own packages (where its reference labs live)."""
+    here = _rospack_path('course_grader')
+    return os.path.dirname(os.path.realpath(here)) if here else None
+
+
+def find_student_package(lab, path):
+    """The folder of the student's package: the given path, or the sourced overlay's LAB."""
+    if path:
+        folder = os.path.abspath(path)
+        if not os.path.isfile(os.path.join(folder, 'package.xml')):
+            raise CheckError('%s is not a package: it has no package.xml (give the folder made by '
+                             'catkin_create_pkg %s)' % (path, lab))
+        name = package_name(os.path.join(folder, 'package.xml'))
+        if name != lab:
+            raise CheckError('%s is the package %s, not %s: the lab %s grades a package named %s'
+                             % (path, name, lab, lab, lab))
+        return folder
+    found = _rospack_path(lab)
+    reference = project_src()
+    if found is None or (reference and os.path.dirname(os.path.realpath(found)) == reference):
+        raise CheckError('no package %s of your own was found (%s): source your workspace first '
+                         '(source ~/catkin_ws/devel/setup.bash, see docs/student-workspace.md), or give '
+                         'its path: rosrun course_grader check %s ~/catkin_ws/src/%s'
+                         % (lab, 'rospack finds only the course\'s own reference package at %s' % found
+                            if found else 'rospack finds none', lab, lab))
+    return found
+
+
+def print_result(result, only=None):
+    for criterion in result['criteria']:
+        if only and criterion['id'] != only:
+            continue
+        print('%s %-22s %g / %g  %s' % ('PASS' if criterion['passed'] else 'FAIL', criterion['id'],
+                                        criterion['points'], criterion['max_points'], criterion['title']))
+        if criterion['reason']:
+            print('    seen: %s' % criterion['reason'])
+        for hint in criterion['hints']:
+            print('    hint: %s' % hint)
+    if result.get('error'):
+        print('check: %s' % result['error'])
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog='rosrun course_grader check', description=__doc__)
+    parser.add_argument('lab', help='the lab: %s' % ', '.join(rubrics.labs()))
+    parser.add_argument('package_path', nargs='?', help='your package (default: rospack find LAB)')
+    parser.add_argument('--only', metavar='ID', help='check one criterion')
+    args = parser.parse_args(sys.argv[1:] if argv is None else argv)
+    started = time.monotonic()
+    try:
+        if args.lab not in rubrics.labs():
+            raise CheckError('there is no lab %s; the labs are %s' % (args.lab, ', '.join(rubrics.labs())))
+        rubric = rubrics.load(args.lab)
+        known = [c.id for c in rubric.criteria]
+        if args.only and args.only not in known:
+            raise CheckError('%s has no criterion %s; its criteria are %s' % (args.lab, args.only, ', '.join(known)))
+        folder = find_student_package(args.lab, args.package_path)
+    except (CheckError, rubrics.RubricError) as error:
+        print('check: %s' % error, file=sys.stderr)
+        return 2
+    out = tempfile.mkdtemp(prefix='course-check-%s-' % args.lab)
+    print('check: grading the package at %s with the rubric of %s, on this machine' % (folder, args.lab), flush=True)
+    grading = argparse.Namespace(out=out, jobs=1, no_container=True, rubric=None, image=None)
+    grader = Grader(grading, rubric)
+    grader.total = 1
+    result = grader.grade_one(folder)
+    print_result(result, args.only)
+    student = os.path.join(out, os.path.basename(folder))
+    print('check: pictures and logs in %s' % student)
+    print('check: total %g / %g (%.0f s)' % (result['score'], result['max_score'], time.monotonic() - started))
+    print('check: %s' % COUNTS)
+    return 0
