@@ -16,7 +16,7 @@ import time
 import uuid
 from concurrent.futures import ThreadPoolExecutor
 
-from course_grader import feedback, reports, results, rubric as rubrics
+from course_grader import feedback, gradescope, reports, results, rubric as rubrics
 from course_grader.submission import SubmissionError, find_package, student_name, unpack
 from course_testing import processes
 
@@ -186,6 +186,7 @@ class Grader:
             shutil.rmtree(scratch, ignore_errors=True)
         result['seconds'] = time.monotonic() - started
         results.write(result, folder)   # the grade as the reports have it (checked against the rubric)
+        gradescope.write(result, folder)
         with self.lock:
             self.done += 1
             print('grade: [%d/%d] %s: %g / %g (%.0f s)%s' % (
