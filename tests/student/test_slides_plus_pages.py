@@ -3,7 +3,7 @@ what a paste gives, damage included) or types it as printed (slides/), meets the
 docs/copying-the-slides/ quotes (each quoted line must be on the page, exactly as this machine
 prints it), applies only the edits the pages prescribe, and hands the package in:
 `rosrun course_grader grade LAB PACKAGE --no-container` (what ./grade.sh runs after its set-up)
-must give full marks.
+must give full marks, and so must the student's own check (`rosrun course_grader check LAB`).
 
 The terminals are test_student_workspace's: nothing but HOME, a PATH whose first python has no
 rospy, and the student's devel/setup.bash."""
@@ -135,6 +135,23 @@ def grade(student, lab):
     return int(float(row['score'])), int(float(row['max_score'])), row, output
 
 
+def check(student, lab, *options):
+    """The student's own check, in the student's terminal (the overlay's package, found by rospack):
+    the package it names and the lines it ends with."""
+    status, output = student.run('rosrun course_grader check %s %s' % (lab, ' '.join(options)), timeout=900)
+    kept = re.search(r'^check: pictures and logs in (/\S+)$', output, re.M)
+    if kept:   # a folder of the check's own in /tmp
+        shutil.rmtree(os.path.dirname(kept.group(1)))
+    assert status == 0, output[-3000:]
+    print(output[-1500:])
+    package = os.path.join(student.workspace, 'src', lab)
+    assert 'check: grading the package at %s with the rubric of %s' % (package, lab) in output, output
+    assert re.search(r'^check: built in [0-9.]+ s$', output, re.M), output   # each step with its time
+    assert output.rstrip().endswith("check: This is your own check: the teacher's run, in a container, "
+                                    "is the one that counts."), output[-500:]
+    return output
+
+
 def test_move_turtlebot3_pasted_then_the_pages_edits_get_full_marks(student):
     lab = 'move_turtlebot3'
     make_package(student, 'catkin_create_pkg move_turtlebot3 rospy geometry_msgs sensor_msgs', lab)
@@ -192,6 +209,9 @@ def test_move_turtlebot3_pasted_then_the_pages_edits_get_full_marks(student):
     assert status == 0, output[-3000:]
     score, full, row, output = grade(student, lab)
     assert (score, full) == (14, 14), (row, output[-2000:])
+    output = check(student, lab)
+    assert re.search(r'^check: total 14 / 14 \(\d+ s\)$', output, re.M), output[-2000:]
+    assert len(re.findall(r'^check: \S+ checked in [0-9.]+ s$', output, re.M)) == 3, output[-2000:]
 
 
 def stage3_from_the_page():
@@ -227,6 +247,10 @@ def test_my_turtle_slides_then_the_pages_edits_get_full_marks(student):
     assert status == 0, output[-3000:]
     score, full, row, output = grade(student, lab)
     assert (score, full) == (9, 9), (row, output[-2000:])
+    output = check(student, lab)
+    assert re.search(r'^check: total 9 / 9 \(\d+ s\)$', output, re.M), output[-2000:]
+    assert re.findall(r'^(PASS|FAIL) (\S+)', output, re.M) == [
+        ('PASS', 'builds'), ('PASS', 'launch'), ('PASS', 'teleop'), ('PASS', 'prints_pose')], output[-2000:]
 
 
 def test_ros_exercises_fig5_pasted_then_the_pages_edits_get_full_marks(student):
@@ -264,3 +288,8 @@ def test_ros_exercises_fig5_pasted_then_the_pages_edits_get_full_marks(student):
     assert status == 0, output[-3000:]
     score, full, row, output = grade(student, lab)
     assert (score, full) == (18, 18), (row, output[-2000:])
+    # The one criterion the student's edits touched, as the lab's README suggests: one run, not six.
+    output = check(student, lab, '--only', 'circle')
+    assert re.findall(r'^(PASS|FAIL) (\S+)', output, re.M) == [('PASS', 'circle')], output[-2000:]
+    assert re.findall(r'^check: \S+ checked in', output, re.M) == ['check: exercise3.launch checked in'], output
+    assert re.search(r'^check: circle 2 / 2, the other criteria not checked \(\d+ s\)$', output, re.M), output

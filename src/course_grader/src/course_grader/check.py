@@ -88,14 +88,21 @@ def main(argv=None):
         print('check: %s' % error, file=sys.stderr)
         return 2
     out = tempfile.mkdtemp(prefix='course-check-%s-' % args.lab)
-    print('check: grading the package at %s with the rubric of %s, on this machine' % (folder, args.lab), flush=True)
-    grading = argparse.Namespace(out=out, jobs=1, no_container=True, rubric=None, image=None)
-    grader = Grader(grading, rubric)
+    print('check: grading the package at %s with the rubric of %s, on this machine%s'
+          % (folder, args.lab, ', the criterion %s only' % args.only if args.only else ''), flush=True)
+    grading = argparse.Namespace(out=out, jobs=1, no_container=True, rubric=None, image=None, only=args.only)
+    grader = Grader(grading, rubric, announce=False, on_step=lambda step: print('check: %s' % step, flush=True))
     grader.total = 1
     result = grader.grade_one(folder)
     print_result(result, args.only)
     student = os.path.join(out, os.path.basename(folder))
     print('check: pictures and logs in %s' % student)
-    print('check: total %g / %g (%.0f s)' % (result['score'], result['max_score'], time.monotonic() - started))
+    seconds = time.monotonic() - started
+    if args.only:
+        criterion = next(c for c in result['criteria'] if c['id'] == args.only)
+        print('check: %s %g / %g, the other criteria not checked (%.0f s)'
+              % (args.only, criterion['points'], criterion['max_points'], seconds))
+    else:
+        print('check: total %g / %g (%.0f s)' % (result['score'], result['max_score'], seconds))
     print('check: %s' % COUNTS)
     return 0

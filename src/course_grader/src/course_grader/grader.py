@@ -23,6 +23,7 @@ from course_testing import processes
 MARKER = '.course_grader'            # in --out: the folder is the grader's (it may empty it)
 RUN_MARK = 'COURSE_GRADER_RUN'       # in the environment of everything a --no-container session starts
 MAX_COPIED_BYTES = 50 * 2 ** 20      # of what one sandbox leaves in its output folder
+STEP_PREFIX = 'grade_submission: '   # a line of the session that reports a step and its time
 # The trusted side of a container is root with no capability but these: start the student's side
 # as the user `student`, and stop it. No write access anywhere else, no other user's processes.
 TRUSTED_CAPABILITIES = ['--cap-drop', 'ALL', '--cap-add', 'SETUID', '--cap-add', 'SETGID', '--cap-add', 'KILL']
@@ -154,9 +155,11 @@ def _limit_resources():
 
 
 class Grader:
-    def __init__(self, args, rubric):
+    def __init__(self, args, rubric, announce=True, on_step=None):
         self.args = args
         self.rubric = rubric
+        self.announce = announce   # a line per graded student ("grade: [3/30] ...")
+        self.on_step = on_step     # --no-container: called with each step the session reports, as it ends
         self.out = os.path.abspath(args.out)
         self.run_id = uuid.uuid4().hex[:8]
         self.lock = threading.Lock()
@@ -189,6 +192,8 @@ class Grader:
         gradescope.write(result, folder)
         with self.lock:
             self.done += 1
+            if not self.announce:
+                return result
             print('grade: [%d/%d] %s: %g / %g (%.0f s)%s' % (
                 self.done, self.total, student, result['score'], result['max_score'], result['seconds'],
                 ': ' + result['error'] if result.get('error') else ''), flush=True)
@@ -220,6 +225,8 @@ class Grader:
                 '--student', student]
         if self.args.rubric:
             args += ['--rubric', os.path.abspath(self.args.rubric) if self.args.no_container else '/rubric.yaml']
+        if getattr(self.args, 'only', None):
+            args += ['--only', self.args.only]
         return args
 
     def _run_in_container(self, submission, package, student, staging):
@@ -266,8 +273,13 @@ class Grader:
             os.path.join(submission, package), staging, os.path.join(scratch, 'student'), student)
         log = os.path.join(staging, 'grader.txt')
         with open(log, 'wb') as stream:
-            process = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=stream, stderr=subprocess.STDOUT,
-                                       env=env, start_new_session=True, preexec_fn=_limit_resources)
+            process = subprocess.Popen(argv, stdin=subprocess.DEVNULL, env=env, start_new_session=True,
+                                       stdout=subprocess.PIPE if self.on_step else stream, stderr=subprocess.STDOUT,
+                                       preexec_fn=_limit_resources)
+            copier = None
+            if self.on_step:
+                copier = threading.Thread(target=self._copy_steps, args=(process.stdout, stream), daemon=True)
+                copier.start()
             try:
                 code = process.wait(self.wall_limit)
             except subprocess.TimeoutExpired:
@@ -277,7 +289,18 @@ class Grader:
                 # The session stops what it started; what escaped it (a node in a session of its
                 # own, reparented to init) carries the mark in its environment and goes now.
                 stop_marked('%s=%s' % (RUN_MARK, mark))
+                if copier:
+                    copier.join(10)
         return self._reason(code, log)
+
+    def _copy_steps(self, pipe, stream):
+        """The session's output into its log, and each step it reports to on_step as it comes."""
+        for line in pipe:
+            stream.write(line)
+            stream.flush()
+            text = line.decode(errors='replace').rstrip()
+            if text.startswith(STEP_PREFIX):
+                self.on_step(text[len(STEP_PREFIX):])
 
     def _reason(self, code, log):
         if code is None:

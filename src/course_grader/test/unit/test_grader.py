@@ -70,3 +70,15 @@ def test_only_regular_files_of_the_trusted_sides_tar_stream_are_unpacked(tmp_pat
     assert os.listdir(str(staging)) == ['result.json']
     grader.unpack_output(b'not a tar stream', str(staging))   # a session that broke down: nothing more
     assert not (tmp_path / 'escaped').exists()
+
+
+def test_the_steps_a_session_reports_reach_on_step_and_the_whole_output_its_log(tmp_path):
+    steps = []
+    args = type('Args', (), {'out': str(tmp_path / 'out')})()
+    rubric = type('Rubric', (), {'limits': {'build_seconds': 1, 'run_seconds': 1}})()
+    session_output = io.BytesIO(b'grade_submission: built in 4.1 s\nroscore started\n'
+                                b'grade_submission: move_turtle.launch checked in 9.5 s\n')
+    log = io.BytesIO()
+    grader.Grader(args, rubric, on_step=steps.append)._copy_steps(session_output, log)
+    assert steps == ['built in 4.1 s', 'move_turtle.launch checked in 9.5 s']
+    assert log.getvalue() == session_output.getvalue()
