@@ -7,6 +7,8 @@ import subprocess
 
 import yaml
 
+from course_grader.submission import safe_name
+
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..', '..'))
 EXAMPLES = os.path.join(ROOT, 'examples', 'grading')
 
@@ -38,11 +40,12 @@ def outscored_twins(lab, rows):
 
 def read_results(out):
     """grades.csv rows and result.json of every student, by student."""
-    with open(os.path.join(out, 'grades.csv')) as stream:
+    with open(os.path.join(out, 'grades.csv'), encoding='utf-8') as stream:
         rows = {row['student']: row for row in csv.DictReader(stream)}
     details = {}
-    for student in rows:
-        with open(os.path.join(out, student, 'result.json')) as stream:
+    for student, row in rows.items():
+        folder = '%s_%s' % (safe_name(student), row['id']) if row['id'] else safe_name(student)
+        with open(os.path.join(out, folder, 'result.json'), encoding='utf-8') as stream:
             details[student] = json.load(stream)
     return rows, details
 

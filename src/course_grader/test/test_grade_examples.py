@@ -2,6 +2,7 @@
 """grade --no-container on the trusted examples of the example classes (no hostile one): scores and
 sentences as expected.yaml says, and nothing the grading started still running afterwards."""
 import os
+import shutil
 import subprocess
 import tempfile
 import unittest
@@ -80,6 +81,37 @@ class GradeExamplesTest(unittest.TestCase):
             rows, details = read_results(out)
             self.assertEqual(rows['model']['score'], '14', details['model'])
             self.assertIn('(rubrics in %s/install/share/course_grader/rubrics)' % folder, result.stdout)
+
+    def test_a_moodle_download_graded_as_it_is_then_regraded(self):
+        """The folder Moodle's "download all" gives, a zip inside, graded twice into one --out: the
+        name as Moodle wrote it and its id in the reports, then what changed since the first run."""
+        with tempfile.TemporaryDirectory() as folder:
+            students = make_class('move_turtlebot3', os.path.join(folder, 'class'))
+            moodle = os.path.join(folder, 'moodle', 'José Núñez_4711_assignsubmission_file_')
+            os.makedirs(moodle)
+            out = os.path.join(folder, 'grades')
+
+            def grade(package):
+                shutil.make_archive(os.path.join(moodle, 'catkin_ws'), 'zip', package)
+                run = subprocess.run(['rosrun', 'course_grader', 'grade', 'move_turtlebot3', moodle, '--no-container',
+                                      '--out', out], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                     universal_newlines=True, stdin=subprocess.DEVNULL)
+                print(run.stdout)
+                self.assertEqual(run.returncode, 0, run.stdout)
+                os.remove(os.path.join(moodle, 'catkin_ws.zip'))
+                return run.stdout
+
+            first = grade(students['into_the_wall'])
+            self.assertIn('grade: [1/1] José Núñez (4711): 9 / 14', first)
+            rows, details = read_results(out)
+            self.assertEqual((rows['José Núñez']['id'], rows['José Núñez']['score']), ('4711', '9'))
+            self.assertTrue(os.path.isdir(os.path.join(out, 'José_Núñez_4711')))
+            second = grade(students['model'])
+            self.assertRegex(second, r'grade: \[1/1\] José Núñez \(4711\): 14 / 14 \(\d+ s\); before 9 / 14: '
+                                     r'avoid_stops 0 -> 3, avoid_stays 0 -> 2\n')
+            with open(os.path.join(out, 'report.html'), encoding='utf-8') as page:
+                self.assertIn('The earlier grading into this folder gave 9 / 14; changed since: avoid_stops 0 → 3, '
+                              'avoid_stays 0 → 2.', page.read())
 
 
 if __name__ == '__main__':

@@ -95,7 +95,7 @@ def main(argv=None):
     grader.total = 1
     result = grader.grade_one(folder)
     print_result(result, args.only)
-    student = os.path.join(out, os.path.basename(folder))
+    student = os.path.join(out, result['folder'])
     print('check: pictures and logs in %s' % student)
     seconds = time.monotonic() - started
     if args.only:

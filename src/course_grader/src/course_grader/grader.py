@@ -17,7 +17,7 @@ import uuid
 from concurrent.futures import ThreadPoolExecutor
 
 from course_grader import feedback, gradescope, reports, results, rubric as rubrics
-from course_grader.submission import SubmissionError, find_package, student_name, unpack
+from course_grader.submission import SubmissionError, ascii_name, find_package, student_of, unpack
 from course_testing import processes
 
 MARKER = '.course_grader'            # in --out: the folder is the grader's (it may empty it)
@@ -56,7 +56,8 @@ def parse_args(argv):
                     'student into --out.', epilog=describe_labs())
     parser.add_argument('lab', help='the lab: %s' % ', '.join(rubrics.labs()))
     parser.add_argument('submissions', nargs='+', metavar='SUBMISSION',
-                        help='a student\'s folder (the package, or a workspace with src/), .zip or .tar.gz')
+                        help='a student\'s folder (the package, or a workspace with src/), .zip or .tar.gz, '
+                             'or a learning platform\'s folder or file of one student (docs/grading.md)')
     parser.add_argument('--out', default='grades', help='output folder (default: grades/)')
     parser.add_argument('--jobs', type=int, default=2, help='submissions graded at once (default: 2)')
     parser.add_argument('--no-container', action='store_true',
@@ -71,21 +72,30 @@ def parse_args(argv):
 
 
 def prepare_out(out):
-    """An empty output folder: new, or one the grader wrote before (then its old results go)."""
+    """An empty output folder: new, or one the grader wrote before (then its old results go).
+    Returns the results of that earlier grading by student folder ({} for a new folder)."""
     if os.path.exists(out) and not os.path.isdir(out):
         raise GraderError('--out %s is a file, not a folder' % out)
+    previous = {}
     if os.path.isdir(out) and os.listdir(out):
         if not os.path.exists(os.path.join(out, MARKER)):
             raise GraderError('--out %s holds files the grader did not write: give an empty or new folder' % out)
+        previous = results.read_earlier(out)
+        if not os.access(out, os.W_OK):
+            raise GraderError('--out %s cannot be written (permission denied): nothing was graded' % out)
         for name in os.listdir(out):
             path = os.path.join(out, name)
             if os.path.isdir(path) and not os.path.islink(path):
                 shutil.rmtree(path)
             else:
                 os.remove(path)
-    os.makedirs(out, exist_ok=True)
-    with open(os.path.join(out, MARKER), 'w') as stream:
-        stream.write('written by the course grader; grading again into this folder replaces it all\n')
+    try:
+        os.makedirs(out, exist_ok=True)
+        with open(os.path.join(out, MARKER), 'w') as stream:
+            stream.write('written by the course grader; grading again into this folder replaces it all\n')
+    except OSError as error:
+        raise GraderError('--out %s cannot be written (%s): nothing was graded' % (out, error.strerror or error))
+    return previous
 
 
 def copy_output(staging, folder):
@@ -160,6 +170,7 @@ class Grader:
         self.rubric = rubric
         self.announce = announce   # a line per graded student ("grade: [3/30] ...")
         self.on_step = on_step     # --no-container: called with each step the session reports, as it ends
+        self.previous = {}         # folder name: the result of the last grading into the same --out
         self.out = os.path.abspath(args.out)
         self.run_id = uuid.uuid4().hex[:8]
         self.lock = threading.Lock()
@@ -176,27 +187,29 @@ class Grader:
             return list(pool.map(self.grade_one, submissions))
 
     def grade_one(self, path):
-        student = student_name(path)
+        who = student_of(path)
+        student = who.folder   # the student's folder in --out, and the name the sandbox is given
         started = time.monotonic()
         folder = os.path.join(self.out, student)
         os.makedirs(folder)
-        scratch = tempfile.mkdtemp(prefix='course-grader-%s-' % student)
+        scratch = tempfile.mkdtemp(prefix='course-grader-%s-' % ascii_name(student))
         try:
             result = self._grade(path, student, folder, scratch)
         except Exception as error:   # a fault of the grader for one student: the others go on
             result = results.failed(self.rubric, student, 'the grader failed on this submission: %r' % error)
         finally:
             shutil.rmtree(scratch, ignore_errors=True)
-        result['seconds'] = time.monotonic() - started
+        result.update(seconds=time.monotonic() - started, student=who.name, student_id=who.id, folder=student)
         results.write(result, folder)   # the grade as the reports have it (checked against the rubric)
         gradescope.write(result, folder)
         with self.lock:
             self.done += 1
             if not self.announce:
                 return result
-            print('grade: [%d/%d] %s: %g / %g (%.0f s)%s' % (
-                self.done, self.total, student, result['score'], result['max_score'], result['seconds'],
-                ': ' + result['error'] if result.get('error') else ''), flush=True)
+            print('grade: [%d/%d] %s: %g / %g (%.0f s)%s%s' % (
+                self.done, self.total, who.name + (' (%s)' % who.id if who.id else ''), result['score'],
+                result['max_score'], result['seconds'], ': ' + result['error'] if result.get('error') else '',
+                results.describe_change(results.change(self.previous.get(student), result))), flush=True)
         return result
 
     def _grade(self, path, student, folder, scratch):
@@ -232,7 +245,7 @@ class Grader:
     def _run_in_container(self, submission, package, student, staging):
         """The trusted side (the session, roscore, the simulators) as root without privileges, the
         student's side as `student`; the result comes back on the container's standard output."""
-        name = 'course-grader-%s-%s' % (self.run_id, student)
+        name = 'course-grader-%s-%s-%s' % (self.run_id, ascii_name(student)[:40], uuid.uuid4().hex[:6])
         rubric_mount = ['-v', '%s:/rubric.yaml:ro' % os.path.abspath(self.args.rubric)] if self.args.rubric else []
         # --init: a reaper as PID 1, so that what the submission forks and leaves behind is reaped.
         # --rm as well as the rm -f below: the engine removes it even if this process is killed.
@@ -266,7 +279,7 @@ class Grader:
         """The session on this machine, as our user: the student's side apart only in its
         environment (no overlay on the trusted side) and its process groups (docs/grading.md)."""
         from course_testing.processes import stop_process_group
-        mark = '%s-%s' % (self.run_id, student)
+        mark = '%s-%s' % (self.run_id, uuid.uuid4().hex)
         env = dict(os.environ, ROS_HOME=os.path.join(scratch, 'ros'))
         env[RUN_MARK] = mark
         argv = ['rosrun', 'course_grader', 'grade_submission'] + self._session_args(
@@ -323,7 +336,7 @@ def main(argv=None):
         missing = [path for path in args.submissions if not os.path.exists(path)]
         if missing:
             raise GraderError('no such submission: %s' % ', '.join(missing))
-        names = [student_name(path) for path in args.submissions]
+        names = [student_of(path).folder for path in args.submissions]
         twice = sorted({name for name in names if names.count(name) > 1})
         if twice:
             raise GraderError('two submissions have the same student name: %s' % ', '.join(twice))
@@ -333,7 +346,7 @@ def main(argv=None):
                   % pwd.getpwuid(os.getuid()).pw_name, flush=True)
         elif not args.image:
             raise GraderError('no Docker image given (--image, or run ./grade.sh which makes it)')
-        prepare_out(args.out)
+        previous = prepare_out(args.out)
     except (rubrics.RubricError, GraderError, OSError) as error:
         print('grade: %s' % error, file=sys.stderr)
         return 2
@@ -341,9 +354,14 @@ def main(argv=None):
         len(args.submissions), args.lab, args.jobs, '' if args.no_container else ', each in a container of '
         + args.image), flush=True)
     grader = Grader(args, rubric)
+    grader.previous = previous
     class_results = grader.grade_all(args.submissions)
     seconds = time.monotonic() - started
-    reports.write_all(class_results, rubric, grader.out, seconds)
+    gone = sorted(set(previous) - {result['folder'] for result in class_results})
+    if gone:
+        print('grade: graded last time into %s, not this time: %s' % (args.out, ', '.join(
+            '%s (%g / %g)' % (previous[f]['student'], previous[f]['score'], previous[f]['max_score']) for f in gone)))
+    reports.write_all(class_results, rubric, grader.out, seconds, previous)
     print('grade: %d students graded in %.0f s (%.1f s per student): %s, %s, %s' % (
         len(class_results), seconds, seconds / len(class_results), os.path.join(args.out, 'grades.csv'),
         os.path.join(args.out, 'report.html'), os.path.join(args.out, 'junit/')), flush=True)

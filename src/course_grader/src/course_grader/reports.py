@@ -6,20 +6,27 @@ import html
 import os
 import xml.etree.ElementTree as ET
 
-from course_grader import feedback
+from course_grader import feedback, results as course_results
 
 
 def _points(value):
     return ('%g' % value) if isinstance(value, (int, float)) else str(value)
 
 
+def folder_of(result):
+    """The student's folder in --out (the name, made safe for a path, and the platform's id)."""
+    return result.get('folder') or result['student']
+
+
 def write_csv(results, rubric, path):
-    with open(path, 'w', newline='') as stream:
+    """One row per student: the name as the platform wrote it, its id there (the column a grade
+    book matches rows by), the score and each criterion's points."""
+    with open(path, 'w', newline='', encoding='utf-8') as stream:
         writer = csv.writer(stream)
-        writer.writerow(['student', 'lab', 'score', 'max_score'] + [c.id for c in rubric.criteria])
+        writer.writerow(['student', 'id', 'lab', 'score', 'max_score'] + [c.id for c in rubric.criteria])
         for result in sorted(results, key=lambda r: r['student']):
             points = {c['id']: c['points'] for c in result['criteria']}
-            writer.writerow([result['student'], result['lab'], _points(result['score']),
+            writer.writerow([result['student'], result.get('student_id', ''), result['lab'], _points(result['score']),
                              _points(result['max_score'])]
                             + [_points(points.get(c.id, 0)) for c in rubric.criteria])
 
@@ -52,7 +59,7 @@ def junit_xml(result):
 
 def write_junit(result, folder):
     os.makedirs(folder, exist_ok=True)
-    with open(os.path.join(folder, result['student'] + '.xml'), 'w') as stream:
+    with open(os.path.join(folder, folder_of(result) + '.xml'), 'w', encoding='utf-8') as stream:
         stream.write('<?xml version="1.0" encoding="UTF-8"?>\n' + junit_xml(result) + '\n')
 
 
@@ -70,8 +77,10 @@ td.why { white-space: pre-wrap; }
 '''
 
 
-def html_report(results, rubric, out_dir, seconds=None, log_lines=25):
-    """The HTML page of a graded class (pictures embedded, so the file can be mailed alone)."""
+def html_report(results, rubric, out_dir, seconds=None, previous=None, log_lines=25):
+    """The HTML page of a graded class (pictures embedded, so the file can be mailed alone); with
+    previous (results.read_earlier of the same --out), what changed since that grading."""
+    previous = previous or {}
     esc = html.escape
     results = sorted(results, key=lambda r: r['student'])
     parts = ['<!DOCTYPE html><html><head><meta charset="utf-8"><title>%s: grades</title><style>%s</style>'
@@ -80,20 +89,32 @@ def html_report(results, rubric, out_dir, seconds=None, log_lines=25):
              % (esc(rubric.title), esc(rubric.lab), len(results), _points(rubric.max_score),
                 ', graded in %.0f s' % seconds if seconds is not None else '',
                 esc(os.path.basename(rubric.path)))]
-    parts.append('<table class="summary"><tr><th>student</th><th>score</th>%s</tr>' % ''.join(
-        '<th title="%s">%s</th>' % (esc(c.title), esc(c.id)) for c in rubric.criteria))
+    parts.append('<table class="summary"><tr><th>student</th><th>id</th><th>score</th>%s%s</tr>' % (
+        '<th>before</th>' if previous else '',
+        ''.join('<th title="%s">%s</th>' % (esc(c.title), esc(c.id)) for c in rubric.criteria)))
     for result in results:
         cells = ''.join('<td class="%s num">%s</td>' % ('pass' if c['passed'] else 'fail', _points(c['points']))
                         for c in result['criteria'])
-        parts.append('<tr><td><a href="#%s">%s</a></td><td class="num">%s / %s</td>%s</tr>' % (
-            esc(result['student']), esc(result['student']), _points(result['score']),
-            _points(result['max_score']), cells))
+        earlier = previous.get(folder_of(result))
+        before = ('<td class="num">%s</td>' % ('%s / %s' % (_points(earlier['score']), _points(earlier['max_score']))
+                                              if earlier else 'new') if previous else '')
+        parts.append('<tr><td><a href="#%s">%s</a></td><td>%s</td><td class="num">%s / %s</td>%s%s</tr>' % (
+            esc(folder_of(result)), esc(result['student']), esc(result.get('student_id', '')),
+            _points(result['score']), _points(result['max_score']), before, cells))
     parts.append('</table>')
+    gone = sorted(set(previous) - {folder_of(r) for r in results})
+    if gone:
+        parts.append('<p>Graded last time into this folder, not this time: %s.</p>' % ', '.join(
+            '%s (%s / %s)' % (esc(previous[f]['student']), _points(previous[f]['score']),
+                              _points(previous[f]['max_score'])) for f in gone))
     for result in results:
         student = result['student']
-        folder = os.path.join(out_dir, student)
-        parts.append('<h2 id="%s">%s: %s / %s</h2>' % (esc(student), esc(student), _points(result['score']),
+        folder = os.path.join(out_dir, folder_of(result))
+        parts.append('<h2 id="%s">%s: %s / %s</h2>' % (esc(folder_of(result)), esc(student), _points(result['score']),
                                                        _points(result['max_score'])))
+        changed = results_change(previous, result)
+        if changed:
+            parts.append('<p class="change">%s</p>' % esc(changed))
         if result.get('error'):
             parts.append('<p class="error">%s</p>' % esc(result['error']))
         parts.append('<table><tr><th>criterion</th><th>points</th><th>why</th></tr>')
@@ -116,15 +137,29 @@ def html_report(results, rubric, out_dir, seconds=None, log_lines=25):
             tail = feedback.log_tail(os.path.join(folder, log), log_lines)
             if tail:
                 parts.append('<details><summary>%s (last %d lines; whole log in %s/%s)</summary><pre>%s</pre>'
-                             '</details>' % (esc(log), log_lines, esc(student), esc(log), esc(tail)))
+                             '</details>' % (esc(log), log_lines, esc(folder_of(result)), esc(log), esc(tail)))
     parts.append('</body></html>')
     return '\n'.join(parts)
 
 
-def write_all(results, rubric, out_dir, seconds=None):
+def results_change(previous, result):
+    """The sentence of report.html on what changed since the earlier grading, or ''."""
+    if not previous:
+        return ''
+    changed = course_results.change(previous.get(folder_of(result)), result)
+    if changed is None:
+        return 'New: not in the earlier grading into this folder.'
+    if not changed['criteria']:
+        return 'As in the earlier grading into this folder.'
+    return 'The earlier grading into this folder gave %s / %s; changed since: %s.' % (
+        _points(changed['score_before']), _points(changed['max_score']),
+        ', '.join('%s %s → %s' % (cid, _points(a), _points(b)) for cid, a, b in changed['criteria']))
+
+
+def write_all(results, rubric, out_dir, seconds=None, previous=None):
     """grades.csv, junit/ and report.html of a class into out_dir (replacing earlier ones)."""
     write_csv(results, rubric, os.path.join(out_dir, 'grades.csv'))
     for result in results:
         write_junit(result, os.path.join(out_dir, 'junit'))
-    with open(os.path.join(out_dir, 'report.html'), 'w') as stream:
-        stream.write(html_report(results, rubric, out_dir, seconds))
+    with open(os.path.join(out_dir, 'report.html'), 'w', encoding='utf-8') as stream:
+        stream.write(html_report(results, rubric, out_dir, seconds, previous))

@@ -50,3 +50,40 @@ def read(rubric, student, folder):
         return score(rubric, outcomes, student, error=str(error) if error else None, pictures=pictures)
     except (OSError, ValueError, KeyError, TypeError, AttributeError):
         return None
+
+
+def read_earlier(out):
+    """The results a grading into `out` left, by student folder (unreadable ones left out)."""
+    earlier = {}
+    for name in sorted(os.listdir(out)):
+        try:
+            with open(os.path.join(out, name, RESULT_FILE)) as stream:
+                result = json.load(stream)
+            earlier[name] = {'student': str(result.get('student', name)), 'score': float(result['score']),
+                             'max_score': float(result['max_score']),
+                             'criteria': {str(c['id']): float(c['points']) for c in result['criteria']}}
+        except (OSError, ValueError, KeyError, TypeError, AttributeError):
+            continue
+    return earlier
+
+
+def change(before, after):
+    """What changed for a student since the earlier grading (an entry of read_earlier, or None):
+    None for a student new to this folder, else the scores and the criteria whose points changed."""
+    if before is None:
+        return None
+    now = {c['id']: c['points'] for c in after['criteria']}
+    changed = [(cid, before['criteria'].get(cid, 0.0), points) for cid, points in now.items()
+               if before['criteria'].get(cid, 0.0) != points]
+    return {'score_before': before['score'], 'score': after['score'], 'max_score': after['max_score'],
+            'criteria': changed}
+
+
+def describe_change(changed):
+    """One phrase for the terminal: '' for a first grading, else what the earlier one gave."""
+    if changed is None:
+        return ''
+    if not changed['criteria']:
+        return '; as before'
+    return '; before %g / %g: %s' % (changed['score_before'], changed['max_score'], ', '.join(
+        '%s %g -> %g' % item for item in changed['criteria']))

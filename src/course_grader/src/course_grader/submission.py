@@ -1,9 +1,11 @@
 """A student's submission: a folder, a .zip or a .tar.gz, unpacked safely and searched for the lab's
 package. Nothing here runs the student's code."""
+import collections
 import os
 import re
 import stat
 import tarfile
+import unicodedata
 import zipfile
 
 # An archive bigger than this when unpacked, or with more members, is refused (an archive bomb).
@@ -16,15 +18,42 @@ class SubmissionError(Exception):
     """The submission cannot be graded; the message is the reason, for the student's row."""
 
 
-def student_name(path):
-    """The student's name: the folder's or archive's name, without the archive suffix."""
-    name = os.path.basename(os.path.normpath(path))
+# The names a learning platform's "download all" gives a student's upload (docs/grading.md):
+# Moodle, a folder `Full Name_ID_assignsubmission_file_`; Canvas, a file
+# `lastnamefirstname[_late]_ID_SUBMISSION_uploaded-name`.
+MOODLE_FOLDER = re.compile(r'^(?P<name>.+?)_(?P<id>\d+)_assignsubmission_[a-z]+_?$')
+CANVAS_FILE = re.compile(r'^(?P<name>[^_]+)_(?:late_)?(?P<id>\d+)_\d+_.+$', re.I)
+
+Student = collections.namedtuple('Student', 'name id folder')
+Student.__doc__ = ('Who handed a submission in: the name as the platform wrote it, the platform\'s id '
+                   '(\'\' when there is none) and a folder name made of them that is safe in a path.')
+
+
+def safe_name(text):
+    """text as a file name: letters (any script) and digits kept, '.', '_' and '-' too, the rest '_'."""
+    kept = ''.join(c if c.isalnum() or c in '._-' else '_' for c in unicodedata.normalize('NFC', text))
+    return kept.strip('._') or 'student'
+
+
+def ascii_name(text):
+    """text for names that allow ASCII only (containers): accents dropped, then as safe_name."""
+    folded = unicodedata.normalize('NFKD', text).encode('ascii', 'ignore').decode()
+    return re.sub(r'[^A-Za-z0-9._-]', '_', folded).strip('._-') or 'student'
+
+
+def student_of(path):
+    """The Student of a submission, from its folder's or file's name."""
+    base = unicodedata.normalize('NFC', os.path.basename(os.path.normpath(path)))
+    moodle = MOODLE_FOLDER.match(base)
+    canvas = CANVAS_FILE.match(base) if not os.path.isdir(path) else None
+    if moodle or canvas:
+        name, platform_id = (moodle or canvas).group('name', 'id')
+        return Student(name, platform_id, '%s_%s' % (safe_name(name), platform_id))
     for suffix in ARCHIVE_SUFFIXES:
-        if name.endswith(suffix):
-            name = name[:-len(suffix)]
+        if base.endswith(suffix):
+            base = base[:-len(suffix)]
             break
-    # Used in file and container names: keep letters, digits, '.', '_' and '-'.
-    return re.sub(r'[^A-Za-z0-9._-]', '_', name).strip('.') or 'student'
+    return Student(base, '', safe_name(base))
 
 
 def _safe_member_path(destination, name):
@@ -134,12 +163,29 @@ def check_folder(folder):
                                           % (os.path.relpath(path, folder), os.readlink(path)))
 
 
+def upload_inside(folder):
+    """The one archive a platform's folder holds (Moodle keeps a student's upload so), or None when
+    the folder itself is the submission (it has a package.xml, or no archive at its top)."""
+    for parent, dirs, files in os.walk(folder):
+        if 'package.xml' in files:
+            return None
+    archives = sorted(name for name in os.listdir(folder) if name.endswith(ARCHIVE_SUFFIXES)
+                      and not name.startswith('.') and os.path.isfile(os.path.join(folder, name)))
+    if len(archives) > 1:
+        raise SubmissionError('the folder holds %d archives and no package.xml (%s): hand in one'
+                              % (len(archives), ', '.join(archives)))
+    return os.path.join(folder, archives[0]) if archives else None
+
+
 def unpack(path, destination):
-    """The submission's folder: `path` itself if it is a folder, else the archive unpacked into
-    destination (which must exist and be empty)."""
+    """The submission's folder: `path` itself if it is a folder, or the one archive it holds, or
+    the archive `path` unpacked into destination (which must exist and be empty)."""
     if os.path.isdir(path):
         check_folder(path)
-        return os.path.realpath(path)
+        inside = upload_inside(path)
+        if inside is None:
+            return os.path.realpath(path)
+        path = inside
     if not os.path.exists(path):
         raise SubmissionError('%s does not exist' % path)
     destination = os.path.realpath(destination)

@@ -50,7 +50,7 @@ def test_csv_junit_and_html(tmp_path):
     with open(str(tmp_path / 'grades.csv')) as stream:
         rows = list(csv.DictReader(stream))
     assert [row['student'] for row in rows] == ['alice', 'bob']
-    assert list(rows[0])[:4] == ['student', 'lab', 'score', 'max_score']
+    assert list(rows[0])[:5] == ['student', 'id', 'lab', 'score', 'max_score']
     assert (rows[0]['score'], rows[0]['max_score'], rows[0]['avoid_stops'], rows[0]['laser_data']) == \
         ('10', '14', '0', '3')
     suite = ET.parse(str(tmp_path / 'junit' / 'alice.xml')).getroot()
@@ -66,3 +66,42 @@ def test_csv_junit_and_html(tmp_path):
     assert 'line 99' in page and 'line 74' not in page      # the log's tail only
     json.dumps(class_results)
     assert os.path.exists(str(tmp_path / 'junit' / 'bob.xml'))
+
+
+def test_a_platforms_student_keeps_name_and_id_in_every_report(tmp_path):
+    result = alice()
+    result.update(student='José Núñez', student_id='4711', folder='José_Núñez_4711')
+    reports.write_all([result], RUBRIC, str(tmp_path))
+    with open(str(tmp_path / 'grades.csv'), encoding='utf-8') as stream:
+        row = next(csv.DictReader(stream))
+    assert (row['student'], row['id'], row['score']) == ('José Núñez', '4711', '10')
+    assert (tmp_path / 'junit' / 'José_Núñez_4711.xml').exists()
+    page = (tmp_path / 'report.html').read_text(encoding='utf-8')
+    assert '<h2 id="José_Núñez_4711">José Núñez: 10 / 14</h2>' in page
+
+
+def test_grading_again_says_what_changed_per_student(tmp_path):
+    earlier = alice()
+    earlier['folder'] = 'alice'
+    (tmp_path / 'alice').mkdir()
+    results.write(earlier, str(tmp_path / 'alice'))
+    (tmp_path / 'gone').mkdir()
+    results.write(results.failed(RUBRIC, 'gone', 'no package'), str(tmp_path / 'gone'))
+    (tmp_path / 'broken').mkdir()
+    (tmp_path / 'broken' / 'result.json').write_text('{not json')
+    previous = results.read_earlier(str(tmp_path))
+    assert sorted(previous) == ['alice', 'gone']
+    now = results.score(RUBRIC, {c['id']: Verdict(True, 'ok') for c in earlier['criteria']}, 'alice')
+    changed = results.change(previous['alice'], now)
+    assert (changed['score_before'], changed['score']) == (10, 14)
+    assert changed['criteria'] == [('executable', 0, 1), ('avoid_stops', 0, 3)]
+    assert results.describe_change(changed) == '; before 10 / 14: executable 0 -> 1, avoid_stops 0 -> 3'
+    assert results.describe_change(results.change(previous['alice'], earlier)) == '; as before'
+    assert results.describe_change(results.change(None, now)) == ''
+    newcomer = results.failed(RUBRIC, 'bob', 'no package')
+    page = reports.html_report([now, newcomer], RUBRIC, str(tmp_path), previous=previous)
+    assert '<th>before</th>' in page
+    assert 'The earlier grading into this folder gave 10 / 14; changed since: executable 0 → 1, avoid_stops 0 → 3.' \
+        in page
+    assert 'New: not in the earlier grading into this folder.' in page
+    assert 'Graded last time into this folder, not this time: gone (0 / 14).' in page

@@ -31,11 +31,64 @@ def tar_with(path, members):
     return str(path)
 
 
-def test_student_names_from_folders_and_archives():
-    assert submission.student_name('/x/alice.tar.gz') == 'alice'
-    assert submission.student_name('/x/bob.zip') == 'bob'
-    assert submission.student_name('/x/carol/') == 'carol'
-    assert submission.student_name('/x/d a$n.zip') == 'd_a_n'
+def test_student_names_from_folders_and_archives(tmp_path):
+    assert submission.student_of('/x/alice.tar.gz') == ('alice', '', 'alice')
+    assert submission.student_of('/x/bob.zip') == ('bob', '', 'bob')
+    assert submission.student_of('/x/carol/') == ('carol', '', 'carol')
+    assert submission.student_of('/x/d a$n.zip') == ('d a$n', '', 'd_a_n')
+
+
+def test_a_moodle_folder_keeps_the_name_as_moodle_wrote_it_and_its_id(tmp_path):
+    folder = tmp_path / 'José Núñez_4711_assignsubmission_file_'
+    folder.mkdir()
+    assert submission.student_of(str(folder)) == ('José Núñez', '4711', 'José_Núñez_4711')
+    # Unzipped on a Mac, the accents come decomposed: the same student, the same folder.
+    decomposed = tmp_path / 'Jose\u0301 Nu\u0301n\u0303ez_4711_assignsubmission_file_'
+    decomposed.mkdir()
+    assert submission.student_of(str(decomposed)) == ('José Núñez', '4711', 'José_Núñez_4711')
+    assert submission.ascii_name('José_Núñez_4711') == 'Jose_Nunez_4711'
+
+
+def test_a_canvas_file_gives_the_name_and_the_user_id():
+    assert submission.student_of('/d/nunezjose_4711_998877_catkin_ws.zip') == ('nunezjose', '4711', 'nunezjose_4711')
+    assert submission.student_of('/d/smithanna_late_4712_998878_upload.tar.gz') == ('smithanna', '4712', 'smithanna_4712')
+
+
+def zip_with(path, members):
+    with zipfile.ZipFile(str(path), 'w') as archive:
+        for name, content in members:
+            archive.writestr(name, content)
+    return str(path)
+
+
+def test_the_one_archive_in_a_platforms_folder_is_what_is_graded(tmp_path):
+    folder = tmp_path / 'José Núñez_4711_assignsubmission_file_'
+    folder.mkdir()
+    zip_with(folder / 'catkin_ws.zip', [('catkin_ws/src/move_turtlebot3/package.xml', PACKAGE_XML)])
+    (folder / 'notes.txt').write_text('my report')
+    out = tmp_path / 'out'
+    out.mkdir()
+    unpacked = submission.unpack(str(folder), str(out))
+    assert unpacked == str(out.resolve())
+    assert submission.find_package(unpacked, 'move_turtlebot3') == 'catkin_ws/src/move_turtlebot3'
+
+
+def test_loose_files_in_a_platforms_folder_are_graded_as_they_are(tmp_path):
+    package = tmp_path / 'Ann Lee_12_assignsubmission_file_' / 'move_turtlebot3'
+    package.mkdir(parents=True)
+    (package / 'package.xml').write_text(PACKAGE_XML)
+    zip_with(package / 'old.zip', [('x.txt', 'an old copy')])   # beside a package: not the upload
+    assert submission.unpack(str(package.parent), str(tmp_path)) == str(package.parent)
+
+
+def test_two_archives_and_no_package_are_named(tmp_path):
+    folder = tmp_path / 'Ann Lee_12_assignsubmission_file_'
+    folder.mkdir()
+    zip_with(folder / 'a.zip', [('x.txt', 'x')])
+    tar_with(folder / 'b.tar.gz', [('y.txt', b'y')])
+    with pytest.raises(SubmissionError, match=r'^the folder holds 2 archives and no package.xml '
+                                              r'\(a.zip, b.tar.gz\): hand in one$'):
+        submission.unpack(str(folder), str(tmp_path))
 
 
 def test_tar_unpacks_with_execute_bits_and_the_package_is_found(tmp_path):
