@@ -26,6 +26,14 @@ def test_out_folder_new_then_replaced_and_a_foreign_one_refused(tmp_path):
     assert (mine / 'thesis.tex').read_text() == 'precious'
 
 
+def test_an_out_folder_that_cannot_be_written_is_refused_in_one_sentence(tmp_path):
+    (tmp_path / 'a_file').write_text('x')
+    with pytest.raises(grader.GraderError, match=r'^--out .*/a_file/grades cannot be written \(Not a directory\): '
+                                                 r'nothing was graded$'):
+        grader.prepare_out(str(tmp_path / 'a_file' / 'grades'))
+    assert grader.main(['my_turtle', str(tmp_path), '--no-container', '--out', str(tmp_path / 'a_file' / 'g')]) == 2
+
+
 def test_only_regular_files_come_back_from_a_sandbox_within_the_size_limit(tmp_path, monkeypatch):
     staging, folder = tmp_path / 'staging', tmp_path / 'alice'
     staging.mkdir()
