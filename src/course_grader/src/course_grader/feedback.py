@@ -44,8 +44,8 @@ def script_problems(path, display_name=None, python_commands=('python3',)):
         problems.append('%s is not executable: run `chmod +x %s` (rosrun only starts executable '
                         'scripts)' % (display_name, display_name))
     if not first.startswith('#!'):
-        problems.append('%s has no #! line: make its first line `#!/usr/bin/env python3`'
-                        % display_name)
+        problems.append(_misplaced_shebang(path, display_name) or
+                        '%s has no #! line: make its first line `#!/usr/bin/env python3`' % display_name)
     else:
         words = first[2:].split()
         interpreter = os.path.basename(words[-1] if words and words[0].endswith('/env') else
@@ -55,6 +55,29 @@ def script_problems(path, display_name=None, python_commands=('python3',)):
                             '(it runs on Python 3): write `#!/usr/bin/env python3`'
                             % (display_name, first, interpreter or '(nothing)'))
     return problems
+
+
+def _misplaced_shebang(path, display_name):
+    """The sentence for a #! line a paste moved (indented, or below other lines), or None."""
+    try:
+        with open(path, 'rb') as stream:
+            head = stream.read(4000).decode('utf-8', 'replace').splitlines()[:10]
+    except OSError:
+        return None
+    for number, line in enumerate(head, 1):
+        if line.lstrip().startswith('#!'):
+            where = ('indented: `%s`' % line.rstrip() if number == 1 else
+                     'on line %d, not line 1' % number)
+            return ('%s: its #! line is %s. A paste from the slides moves it; it must be the first line '
+                    'and start in column 1, or the shell runs the file instead of Python (`from: command '
+                    'not found`)' % (display_name, where))
+    return None
+
+
+# What bash prints when it runs a Python file whose #! line is not the first one: `import` is
+# ImageMagick's screenshot command on Debian, `from` no command at all.
+_RUN_BY_THE_SHELL = re.compile(r'^(import(-im6\.q16)?: unable to open X server|.*: line \d+: from: command not found)',
+                               re.M)
 
 
 def first_compiler_error(build_log):
@@ -130,7 +153,10 @@ def explain_run(script, output, started, stopped_cleanly, python2_sentences=()):
     it stopped on Ctrl-C. python2_sentences: those of python2_prints for this script."""
     sentences = []
     error = syntax_error(output)
-    if error and 'print' in error[2].lower() and python2_sentences:
+    if _RUN_BY_THE_SHELL.search(output):
+        sentences.append('%s was run by the shell, not by Python (`%s`): make `#!/usr/bin/env python3` its '
+                         'first line, starting in column 1' % (script, _RUN_BY_THE_SHELL.search(output).group(0)))
+    elif error and 'print' in error[2].lower() and python2_sentences:
         sentences.append('%s does not start under Python 3: %s' % (script, python2_sentences[0]))
         if len(python2_sentences) > 1:
             sentences.append('%d more Python 2 prints in %s: lines %s' % (

@@ -91,3 +91,24 @@ def test_explain_run_crash_never_started_never_stopped_and_python2():
     assert feedback.explain_run('l.py', syntax.replace("Missing parentheses in call to 'print'", 'bad'),
                                 False, None) == [
         'l.py does not start: SyntaxError in l.py line 5: bad. Did you mean print(...)?']
+
+
+def test_a_pasted_shebang_indented_or_below_line_one_is_named(tmp_path):
+    indented = feedback.script_problems(write(tmp_path, 'laser_data.py', '    #!/usr/bin/env python3\n    import rospy\n'))
+    assert indented == ['laser_data.py: its #! line is indented: `    #!/usr/bin/env python3`. A paste from the slides '
+                        'moves it; it must be the first line and start in column 1, or the shell runs the file '
+                        'instead of Python (`from: command not found`)']
+    below = feedback.script_problems(write(tmp_path, 'trajectory.py', '\n#!/usr/bin/env python3\nimport rospy\n'))
+    assert below[0].startswith('trajectory.py: its #! line is on line 2, not line 1. A paste')
+
+
+def test_a_file_the_shell_ran_is_named_with_the_shells_own_line():
+    # What Debian 12 prints for a pasted laser_data.py (docs/copying-the-slides/move_turtlebot3.md).
+    output = ("import-im6.q16: unable to open X server `' @ error/import.c/ImportImageCommand/346.\n"
+              "/home/you/catkin_ws/src/move_turtlebot3/scripts/laser_data.py: line 3: from: command not found\n")
+    assert feedback.explain_run('laser_data.py', output, False, True) == [
+        "laser_data.py was run by the shell, not by Python (`import-im6.q16: unable to open X server`): make "
+        "`#!/usr/bin/env python3` its first line, starting in column 1"]
+    debian13 = "/x/scripts/laser_data.py: line 3: from: command not found\n"
+    assert feedback.explain_run('laser_data.py', debian13, False, True)[0].startswith(
+        'laser_data.py was run by the shell, not by Python (`/x/scripts/laser_data.py: line 3: from: command not found`)')
