@@ -209,8 +209,14 @@ class Grader:
             print('grade: [%d/%d] %s: %g / %g (%.0f s)%s%s' % (
                 self.done, self.total, who.name + (' (%s)' % who.id if who.id else ''), result['score'],
                 result['max_score'], result['seconds'], ': ' + result['error'] if result.get('error') else '',
-                results.describe_change(results.change(self.previous.get(student), result))), flush=True)
+                self._since_last(student, result)), flush=True)
         return result
+
+    def _since_last(self, student, result):
+        """What changed since the last grading into --out, for the student's line ('' the first time)."""
+        if self.previous and student not in self.previous:
+            return '; not in the last grading'
+        return results.describe_change(results.change(self.previous.get(student), result))
 
     def _grade(self, path, student, folder, scratch):
         unpacked = os.path.join(scratch, 'submission')
