@@ -5,7 +5,7 @@
   2. the highest real-time factor one robot reaches with every topic published at its simulated
      rate and a subscriber on each;
   3. how many robots (spinning on the spot, 1 m apart so that they see each other) run at 1x with
-     all their topics;
+     all their topics, and the highest real-time factor 30 of them reach;
   4. the cost of a physics step under the most extreme finite commands (1e308 m/s, 1e308 rad/s,
      mixes, denormals; pure core), and the real-time factor and topic rates of one robot at 1x
      while such commands arrive ten times a second.
@@ -291,8 +291,8 @@ def main():
         spawn = {'name': 'tb3_0', 'model': 'burger', 'x_pos': -2.0, 'y_pos': -0.5, 'yaw': 0.0}
         factor, lowest = run_simulator('bench_one', 1000.0, [spawn], seconds)
         rows.append(('highest real-time factor, 1 robot, all topics',
-                     '%.1fx (topics at >= %.0f%%)' % (factor, 100 * lowest), '>= 20x',
-                     factor >= 20 and lowest >= ENOUGH))
+                     '%.1fx (topics at >= %.0f%%)' % (factor, 100 * lowest), '>= 100x',
+                     factor >= 100 and lowest >= ENOUGH))
         factor, lowest = run_simulator('bench_extreme', 1.0, [spawn], seconds, EXTREME_COMMANDS)
         rows.append(('1 robot at 1x under extreme commands (10/s)',
                      '%.3fx (topics at >= %.1f%%)' % (factor, 100 * lowest), '1x, 100%',
@@ -308,6 +308,10 @@ def main():
         rows.append(('robots at 1x with all topics',
                      '%d%s' % (most, ' (the most tried)' if most == counts[-1] else ''), '>= 10',
                      most >= 10))
+        factor, lowest = run_simulator('bench_30_fast', 1000.0, grid_of_robots(30), seconds)
+        rows.append(('highest real-time factor, 30 robots, all topics',
+                     '%.1fx (topics at >= %.0f%%)' % (factor, 100 * lowest), '>= 5x',
+                     factor >= 5 and lowest >= ENOUGH))
     finally:
         stop_process_group(core, 30)
     width = max(len(row[0]) for row in rows)
