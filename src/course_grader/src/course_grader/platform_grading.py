@@ -137,7 +137,9 @@ def report(result, stream):
     """Each criterion, its points, reason and hints, then the total (as `check` prints them)."""
     with contextlib.redirect_stdout(stream):
         print('%s: %s' % (result['lab'], result['student']))
-        print_result(result)
+        print_result(dict(result, error=None))
+        if result.get('error'):
+            print('not fully graded: %s' % result['error'])
         print('total %g / %g (%.0f s)' % (result['score'], result['max_score'], result['seconds'] or 0))
     stream.flush()
 

@@ -14,7 +14,7 @@ from course_grader import classroom, grader, platform_files, rubric as rubrics
 ACTIONS = {'actions/checkout', 'classroom-resources/autograding-grading-reporter'}
 
 
-def workflow(lab, tmp_path, image='ghcr.io/teacher/ros-course:bookworm'):
+def workflow(lab, tmp_path, image='registry.example.org/teacher/ros-course:bookworm'):
     folder = tmp_path / lab
     platform_files.write_classroom_template(rubrics.load(lab), str(folder), image)
     text = (folder / '.github' / 'workflows' / 'classroom.yml').read_text()
@@ -31,7 +31,7 @@ def test_each_labs_workflow_uses_only_the_pinned_checkout_and_reporter(lab, tmp_
     assert {use.split('@')[0] for use in uses} == ACTIONS
     for use in uses:
         assert re.fullmatch(r'[\w-]+/[\w-]+@[0-9a-f]{40}', use), use   # a commit, not a movable tag
-    assert job['env'] == {'COURSE_IMAGE': 'ghcr.io/teacher/ros-course:bookworm', 'COURSE_LAB': lab}
+    assert job['env'] == {'COURSE_IMAGE': 'registry.example.org/teacher/ros-course:bookworm', 'COURSE_LAB': lab}
     assert not re.search(r'@[A-Z_]+@', text)   # no placeholder left
 
 
