@@ -137,9 +137,11 @@ def report(result, stream):
     """Each criterion, its points, reason and hints, then the total (as `check` prints them)."""
     with contextlib.redirect_stdout(stream):
         print('%s: %s' % (result['lab'], result['student']))
-        print_result(dict(result, error=None))
-        if result.get('error'):
-            print('not fully graded: %s' % result['error'])
+        error = result.get('error')
+        if not (error and all(c['reason'] == error for c in result['criteria'])):   # else nothing was graded
+            print_result(dict(result, error=None))
+        if error:
+            print('not fully graded: %s' % error)
         print('total %g / %g (%.0f s)' % (result['score'], result['max_score'], result['seconds'] or 0))
     stream.flush()
 
