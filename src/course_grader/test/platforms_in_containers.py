@@ -22,8 +22,10 @@ from example_class import ROOT, expected, make_class
 IMAGE = os.environ.get('COURSE_GRADER_IMAGE')
 ENV_SH = os.path.join(ROOT, 'tools', 'env.sh')
 # The examples each platform grades (the rest of each class is graded by tools/grade-test.sh).
+# hostile: forks, fills its disk, spins, prints without end, writes outside, connects out;
+# hostile_forger: a daemon that rewrites result.json. Neither may score more than expected.yaml says.
 CLASSROOM = [('move_turtlebot3', 'model'), ('move_turtlebot3', 'slides_as_printed'), ('my_turtle', 'model'),
-             ('ros_exercises', 'wrong_rate')]
+             ('ros_exercises', 'wrong_rate'), ('move_turtlebot3', 'hostile'), ('move_turtlebot3', 'hostile_forger')]
 GRADESCOPE = [('move_turtlebot3', 'no_chmod_early_stop'), ('my_turtle', 'forward_only')]
 # Bad input, each one sentence (move_turtlebot3's repository): files, and that sentence.
 MODEL_XML = '<package format="2"><name>move_turtlebot3</name></package>'
@@ -157,6 +159,8 @@ def test_classroom_workflow_grades_a_push_as_grade_sh(lab, student, tmp_path):
         assert sentence in runners[criterion_id]['tests'][0]['message']
         assert sentence in logs['Grade']
     assert 'total %g / %g' % reporter_points(runners) in logs['Grade']
+    for parent, _, names in os.walk(str(tmp_path / 'workspace')):   # the checkout is mounted read-only
+        assert 'hostile_was_here' not in names, parent
 
 
 @pytest.mark.parametrize('name', sorted(BAD_INPUTS))
@@ -217,7 +221,10 @@ def run_autograder(image, submission, tmp_path):
     results = tmp_path / 'results'
     results.mkdir()
     started = time.monotonic()
-    run = subprocess.run(['docker', 'run', '--rm', '--network', 'none', '--user', 'root',
+    # Root, as Gradescope's harness; the memory and CPU docs/grading.md asks for, and a process limit
+    # (Gradescope's own is not known; this machine is shared).
+    run = subprocess.run(['docker', 'run', '--rm', '--network', 'none', '--user', 'root', '--memory', '1536m',
+                          '--cpus', '1', '--pids-limit', '512',
                           '-v', '%s:/autograder/submission:ro' % submission, '-v', '%s:/autograder/results' % results,
                           image, '/autograder/run_autograder'], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                          universal_newlines=True, stdin=subprocess.DEVNULL)
