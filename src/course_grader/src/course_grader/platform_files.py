@@ -69,11 +69,13 @@ def write_classroom_template(rubric, folder, image):
 
 
 def write_gradescope_bundle(rubric, path):
-    """The autograder zip of the lab: setup.sh and run_autograder at its root (executable)."""
+    """The autograder zip of the lab: setup.sh and run_autograder at its root (executable), and
+    the Dockerfile of the image for Gradescope's manual Docker set-up."""
     with zipfile.ZipFile(path, 'w', zipfile.ZIP_DEFLATED) as bundle:
-        for name in ('setup.sh', 'run_autograder'):
+        for name in ('setup.sh', 'run_autograder', 'Dockerfile'):
+            source = os.path.join(platforms_dir(), 'gradescope', name)
             info = zipfile.ZipInfo(name)
-            info.external_attr = (0o100755 << 16)
+            info.external_attr = (0o100000 | (0o755 if os.access(source, os.X_OK) else 0o644)) << 16
             info.compress_type = zipfile.ZIP_DEFLATED
             bundle.writestr(info, fill(template(os.path.join('gradescope', name)), rubric))
     return path

@@ -61,9 +61,10 @@ def stage(folder, rubric, staging):
 
 
 def user_processes(uid):
-    """The ids of the live processes (not zombies) of the user `uid`."""
+    """The ids of the live processes (not zombies) of the user `uid` (none where /proc is not
+    mounted: in the chroot of Gradescope's image the container's end stops them)."""
     found = []
-    for pid in (int(name) for name in os.listdir('/proc') if name.isdigit()):
+    for pid in (int(name) for name in os.listdir('/proc') if name.isdigit()) if os.path.isdir('/proc') else ():
         try:
             with open('/proc/%d/status' % pid) as stream:
                 fields = dict(line.split(':', 1) for line in stream if ':' in line)

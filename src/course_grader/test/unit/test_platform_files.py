@@ -80,11 +80,14 @@ def test_the_grading_step_starts_its_container_as_grade_sh_does(monkeypatch, tmp
 def test_the_bundle_holds_setup_and_run_autograder_executable_at_its_root(tmp_path):
     path = platform_files.write_gradescope_bundle(rubrics.load('my_turtle'), str(tmp_path / 'my_turtle.zip'))
     with zipfile.ZipFile(path) as bundle:
-        assert sorted(bundle.namelist()) == ['run_autograder', 'setup.sh']
-        for info in bundle.infolist():
-            assert stat.S_IMODE(info.external_attr >> 16) == 0o755
+        assert sorted(bundle.namelist()) == ['Dockerfile', 'run_autograder', 'setup.sh']
+        modes = {info.filename: stat.S_IMODE(info.external_attr >> 16) for info in bundle.infolist()}
+        assert modes == {'Dockerfile': 0o644, 'run_autograder': 0o755, 'setup.sh': 0o755}
         run = bundle.read('run_autograder').decode()
+        dockerfile = bundle.read('Dockerfile').decode()
     assert 'grade_platform gradescope my_turtle /autograder/submission --results /autograder/results' in run
+    assert 'FROM ${BASE}' in dockerfile and 'COPY --from=course / /srv/ros-course/' in dockerfile
+    assert '@' not in dockerfile.replace('@LAB@', '')
     for name in ('run_autograder', 'setup.sh'):
         subprocess.run(['bash', '-n', os.path.join(platform_files.platforms_dir(), 'gradescope', name)], check=True)
 
