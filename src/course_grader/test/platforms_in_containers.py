@@ -124,9 +124,9 @@ def run_workflow(lab, submission, tmp_path):
             output.write_text('')
             script = temp / ('step-%d.sh' % len(logs))
             script.write_text(step['run'])
-            run = subprocess.run(['bash', '-e', str(script)], cwd=str(workspace), env=dict(env, GITHUB_OUTPUT=str(output)),
-                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
-                                 stdin=subprocess.DEVNULL)
+            run = subprocess.run(['bash', '-e', str(script)], cwd=str(workspace),
+                                 env=dict(env, GITHUB_OUTPUT=str(output)), stdout=subprocess.PIPE,
+                                 stderr=subprocess.STDOUT, universal_newlines=True, stdin=subprocess.DEVNULL)
             logs[step['name']] = run.stdout
             print('--- step %s (exit %d)\n%s' % (step['name'], run.returncode, run.stdout))
             assert run.returncode == 0, step['name']

@@ -45,12 +45,15 @@ def stage(folder, rubric, staging):
     if len(names) == 1 and archives and os.path.isfile(os.path.join(folder, archives[0])):
         unpack(os.path.join(folder, archives[0]), staging)
     else:
-        size = sum(os.path.getsize(os.path.join(parent, name)) for parent, _, files in os.walk(folder)
-                   for name in files if not os.path.islink(os.path.join(parent, name)))
+        size = 0
+        for parent, dirs, files in os.walk(folder):
+            dirs[:] = [d for d in dirs if d != '.git']   # the repository's history is not graded
+            size += sum(os.path.getsize(os.path.join(parent, name)) for name in files
+                        if not os.path.islink(os.path.join(parent, name)))
         if size > MAX_UNPACKED_BYTES:
             raise SubmissionError('the submission holds more than %d MB: refused' % (MAX_UNPACKED_BYTES // 2 ** 20))
         shutil.rmtree(staging)
-        shutil.copytree(folder, staging, symlinks=True)
+        shutil.copytree(folder, staging, symlinks=True, ignore=shutil.ignore_patterns('.git'))
     for parent, dirs, files in os.walk(staging):
         for name in dirs + files:
             path = os.path.join(parent, name)
@@ -92,7 +95,7 @@ def wall_limit(rubric):
     return Grader(argparse.Namespace(out='.'), rubric).wall_limit
 
 
-def grade_folder(rubric, folder, student, work, student_user='student', rubric_path=None):
+def grade_folder(rubric, folder, student, work, student_user='student'):
     """The result (results.score's dict) of the submission in `folder`. `work` is the trusted
     side's own folder (its logs and the result; nothing of the student's side can write there)."""
     started = time.monotonic()
@@ -107,7 +110,7 @@ def grade_folder(rubric, folder, student, work, student_user='student', rubric_p
     scratch = os.path.join(tempfile.gettempdir(), 'course-student-%s' % uuid.uuid4().hex[:8])
     argv = ['rosrun', 'course_grader', 'grade_submission', '--student-user', student_user, '--lab', rubric.lab,
             '--package', os.path.join(submission, package), '--out', out, '--scratch', scratch,
-            '--student', student] + (['--rubric', rubric_path] if rubric_path else [])
+            '--student', student]
     env = dict(os.environ, HOME=out, ROS_HOME=os.path.join(out, 'ros'))
     log = os.path.join(out, 'grader.txt')
     limit = wall_limit(rubric)
@@ -159,20 +162,22 @@ def main(argv=None):
     parser.add_argument('--results', default='/autograder/results', help='gradescope: where results.json goes')
     parser.add_argument('--student', default='submission', help='the name in the report')
     parser.add_argument('--work', help='the trusted side\'s folder (default: a new one in the temporary folder)')
-    parser.add_argument('--rubric', help='a rubric file of your own (default: the lab\'s)')
     args = parser.parse_args(sys.argv[1:] if argv is None else argv)
     # Standard output carries the outputs only: whatever else is printed goes to standard error.
     result_stream = os.fdopen(os.dup(1), 'w') if args.platform == 'classroom' else sys.stdout
     if args.platform == 'classroom':
         os.dup2(2, 1)
     try:
-        rubric = rubrics.load(args.rubric or args.lab)
+        rubric = rubrics.load(args.lab)
     except rubrics.RubricError as error:
         print('grade_platform: %s' % error, file=sys.stderr)
         return 2
     work = args.work or tempfile.mkdtemp(prefix='course-grader-')
     os.makedirs(work, mode=0o700, exist_ok=True)
-    result = grade_folder(rubric, args.folder, args.student, work, rubric_path=args.rubric)
+    try:
+        result = grade_folder(rubric, args.folder, args.student, work)
+    except Exception as error:   # a fault of the grader: the platform still gets a result saying so
+        result = results.failed(rubric, args.student, 'the grader failed on this submission: %r' % error, seconds=0)
     if args.platform == 'classroom':
         report(result, sys.stderr)
         result_stream.write(classroom.output_lines(result))

@@ -48,14 +48,17 @@ def test_no_package_another_name_and_two_copies_are_one_sentence(tmp_path, layou
     assert sentence in str(error.value)
 
 
-def test_the_package_at_the_top_or_in_src_is_copied_readable_by_everyone(tmp_path):
+def test_the_package_at_the_top_or_in_src_is_copied_readable_by_everyone_without_git_history(tmp_path):
     repo = tmp_path / 'repo'
     shutil.copytree(MODEL, str(repo / 'src' / 'my_turtle'))
+    (repo / '.git').mkdir()
+    (repo / '.git' / 'packed').write_bytes(b'x' * 1000)
     os.chmod(str(repo / 'src' / 'my_turtle' / 'package.xml'), 0o600)
     package, staging = staged(repo, tmp_path)
     assert package == 'src/my_turtle'
     assert os.stat(str(staging / package / 'package.xml')).st_mode & 0o777 == 0o644
     assert os.stat(str(staging)).st_mode & 0o777 == 0o755
+    assert not (staging / '.git').exists()
     (tmp_path / 'again').mkdir()
     assert staged(repo / 'src' / 'my_turtle', tmp_path / 'again')[0] == '.'
 
