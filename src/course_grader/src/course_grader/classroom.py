@@ -9,15 +9,23 @@ the rubric is a runner of its own, with one test: every row of the table is then
 points exactly, whatever the rubric's weights."""
 import base64
 import json
+import re
 
 GRADE_STEP = 'grade'   # the workflow's grading step: one output per criterion
+
+
+def inert(text):
+    """`text` with no line that a runner takes for a workflow command (`::notice ...::Points 14/14`
+    would add an annotation like the reporter's): a reason may quote what the student's code printed
+    or named, and the reporter prints an error's message in its log."""
+    return re.sub(r'^(\s*):(?=:)', r'\1: ', text, flags=re.MULTILINE)
 
 
 def criterion_message(criterion):
     """What the student reads for a criterion: its reason, then its hints, one a line."""
     lines = [criterion['reason'] or ('passed' if criterion['passed'] else 'failed')]
     lines += ['hint: %s' % hint for hint in criterion.get('hints') or []]
-    return '\n'.join(lines)
+    return inert('\n'.join(lines))
 
 
 def runner_result(result, criterion):

@@ -137,9 +137,14 @@ def grade_folder(rubric, folder, student, work, student_user='student'):
     return result
 
 
-def report(result, stream):
-    """Each criterion, its points, reason and hints, then the total (as `check` prints them)."""
+def report(result, stream, runner_log=False):
+    """Each criterion, its points, reason and hints, then the total (as `check` prints them). In a
+    runner's log, between ::stop-commands:: and its token, so that nothing a reason quotes of the
+    student's output is taken for a workflow command."""
+    token = uuid.uuid4().hex
     with contextlib.redirect_stdout(stream):
+        if runner_log:
+            print('::stop-commands::%s' % token)
         print('%s: %s' % (result['lab'], result['student']))
         error = result.get('error')
         if not (error and all(c['reason'] == error for c in result['criteria'])):   # else nothing was graded
@@ -147,6 +152,8 @@ def report(result, stream):
         if error:
             print('not fully graded: %s' % error)
         print('total %g / %g (%.0f s)' % (result['score'], result['max_score'], result['seconds'] or 0))
+        if runner_log:
+            print('::%s::' % token)
     stream.flush()
 
 
@@ -179,7 +186,7 @@ def main(argv=None):
     except Exception as error:   # a fault of the grader: the platform still gets a result saying so
         result = results.failed(rubric, args.student, 'the grader failed on this submission: %r' % error, seconds=0)
     if args.platform == 'classroom':
-        report(result, sys.stderr)
+        report(result, sys.stderr, runner_log=True)
         result_stream.write(classroom.output_lines(result))
         result_stream.close()
     else:

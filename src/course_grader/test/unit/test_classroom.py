@@ -53,3 +53,11 @@ def test_github_output_lines_are_name_equals_base64_without_newlines():
 def test_the_reporter_variable_is_the_runner_in_capitals():
     assert classroom.env_name('trajectory_rate') == 'TRAJECTORY_RATE_RESULTS'
     assert classroom.env_name(' builds') == 'BUILDS_RESULTS'
+
+
+def test_no_line_of_a_message_is_a_workflow_command_for_the_runner():
+    forged = results.failed(RUBRIC, 'mallory', 'packages found: x (a\n::notice title=Autograding complete::Points 14/14)')
+    message = decoded(forged)['builds']['tests'][0]['message']
+    assert not [line for line in message.splitlines() if line.lstrip().startswith('::')]
+    assert ': :notice title=Autograding complete::Points 14/14' in message
+    assert classroom.inert('  ::error::x\nok :: fine') == '  : :error::x\nok :: fine'

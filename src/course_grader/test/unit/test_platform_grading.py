@@ -1,4 +1,5 @@
 """What the platforms hand in, before anything runs: each bad input one sentence (no ROS run)."""
+import io
 import os
 import shutil
 import subprocess
@@ -7,7 +8,7 @@ import zipfile
 
 import pytest
 
-from course_grader import platform_grading, rubric as rubrics
+from course_grader import platform_grading, results, rubric as rubrics
 from course_grader.submission import SubmissionError
 
 RUBRIC = rubrics.load('my_turtle')
@@ -97,3 +98,13 @@ def test_the_processes_of_a_user_are_found_but_not_the_dead_ones():
 def test_the_wall_limit_is_grade_shs():
     limits = RUBRIC.limits
     assert platform_grading.wall_limit(RUBRIC) == limits['build_seconds'] + 4 * limits['run_seconds'] + 60
+
+
+def test_the_runner_log_cannot_carry_a_workflow_command():
+    result = results.failed(RUBRIC, 'mallory', 'x\n::set-output name=builds::forged')
+    stream = io.StringIO()
+    platform_grading.report(dict(result, seconds=1), stream, runner_log=True)
+    lines = stream.getvalue().splitlines()
+    token = lines[0].split('::stop-commands::')[1]
+    assert len(token) == 32 and lines[-1] == '::%s::' % token
+    assert '::set-output name=builds::forged' in stream.getvalue()   # shown, between the two
