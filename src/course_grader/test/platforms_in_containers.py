@@ -23,9 +23,10 @@ IMAGE = os.environ.get('COURSE_GRADER_IMAGE')
 ENV_SH = os.path.join(ROOT, 'tools', 'env.sh')
 # The examples each platform grades (the rest of each class is graded by tools/grade-test.sh).
 # hostile: forks, fills its disk, spins, prints without end, writes outside, connects out;
-# hostile_forger: a daemon that rewrites result.json. Neither may score more than expected.yaml says.
+# hostile_forger: a daemon that rewrites result.json; hostile_teleport: exercise 3's circle drawn
+# with teleports. None may score more than expected.yaml says.
 CLASSROOM = [('move_turtlebot3', 'model'), ('move_turtlebot3', 'slides_as_printed'), ('my_turtle', 'model'),
-             ('ros_exercises', 'wrong_rate'), ('move_turtlebot3', 'hostile'), ('move_turtlebot3', 'hostile_forger')]
+             ('ros_exercises', 'hostile_teleport'), ('move_turtlebot3', 'hostile'), ('move_turtlebot3', 'hostile_forger')]
 GRADESCOPE = [('move_turtlebot3', 'no_chmod_early_stop'), ('my_turtle', 'forward_only')]
 # Bad input, each one sentence (move_turtlebot3's repository): files, and that sentence.
 MODEL_XML = '<package format="2"><name>move_turtlebot3</name></package>'
