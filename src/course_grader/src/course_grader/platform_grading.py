@@ -1,0 +1,196 @@
+"""One submission graded where a platform put it, by a process that is the trusted side of the
+course's image (`rosrun course_grader grade_platform --help`): GitHub Classroom's grading step (a
+container started as ./grade.sh starts one) and Gradescope's run_autograder (its own container).
+
+The grading is ./grade.sh's: grade_submission as root, the student's side as the user `student`,
+the rubric's time limits and the grader's wall limit, the result read back against the rubric;
+only the platform's file differs (classroom.py, gradescope.py)."""
+import argparse
+import contextlib
+import os
+import pwd
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import uuid
+
+from course_grader import classroom, feedback, gradescope, results, rubric as rubrics
+from course_grader.check import print_result
+from course_grader.grader import Grader, _limit_resources
+from course_grader.submission import (ARCHIVE_SUFFIXES, MAX_UNPACKED_BYTES, SubmissionError, check_folder,
+                                      find_package, unpack)
+
+
+def is_empty(folder):
+    """True when the submission holds nothing but hidden entries (.git, .github)."""
+    return not [name for name in os.listdir(folder) if not name.startswith('.')]
+
+
+def stage(folder, rubric, staging):
+    """The submission in `staging` (an empty folder), readable by the student's side: a copy of
+    `folder`, or, when it holds one archive and no package.xml (an uploaded .zip), the archive
+    unpacked. Returns the package's folder relative to staging, or raises a SubmissionError that
+    says in one sentence why there is none to grade."""
+    if not os.path.isdir(folder):
+        raise SubmissionError('no submission at %s' % folder)
+    if is_empty(folder):
+        raise SubmissionError('the submission is empty: hand in the package %s (the folder made by '
+                              'catkin_create_pkg %s), at the top or in src/' % (rubric.package, rubric.package))
+    check_folder(folder)
+    names = [name for name in os.listdir(folder) if not name.startswith('.')]
+    archives = [name for name in names if name.endswith(ARCHIVE_SUFFIXES)]
+    if len(names) == 1 and archives and os.path.isfile(os.path.join(folder, archives[0])):
+        unpack(os.path.join(folder, archives[0]), staging)
+    else:
+        size = 0
+        for parent, dirs, files in os.walk(folder):
+            dirs[:] = [d for d in dirs if d != '.git']   # the repository's history is not graded
+            size += sum(os.path.getsize(os.path.join(parent, name)) for name in files
+                        if not os.path.islink(os.path.join(parent, name)))
+        if size > MAX_UNPACKED_BYTES:
+            raise SubmissionError('the submission holds more than %d MB: refused' % (MAX_UNPACKED_BYTES // 2 ** 20))
+        shutil.rmtree(staging)
+        shutil.copytree(folder, staging, symlinks=True, ignore=shutil.ignore_patterns('.git'))
+    for parent, dirs, files in os.walk(staging):
+        for name in dirs + files:
+            path = os.path.join(parent, name)
+            if not os.path.islink(path):
+                os.chmod(path, 0o755 if os.path.isdir(path) or os.stat(path).st_mode & 0o111 else 0o644)
+    os.chmod(staging, 0o755)
+    return find_package(staging, rubric.package)
+
+
+def user_processes(uid):
+    """The ids of the live processes (not zombies) of the user `uid` (none where /proc is not
+    mounted: in the chroot of Gradescope's image the container's end stops them)."""
+    found = []
+    for pid in (int(name) for name in os.listdir('/proc') if name.isdigit()) if os.path.isdir('/proc') else ():
+        try:
+            with open('/proc/%d/status' % pid) as stream:
+                fields = dict(line.split(':', 1) for line in stream if ':' in line)
+        except OSError:
+            continue
+        if str(uid) in fields.get('Uid', '').split() and not fields.get('State', '').strip().startswith('Z'):
+            found.append(pid)
+    return found
+
+
+def stop_user(uid):
+    """SIGKILL every process of the user `uid` (the student's side), again until none is left."""
+    for _ in range(50):
+        found = [pid for pid in user_processes(uid) if pid != os.getpid()]
+        if not found:
+            return
+        for pid in found:
+            with contextlib.suppress(ProcessLookupError, PermissionError):
+                os.kill(pid, signal.SIGKILL)
+        time.sleep(0.1)
+
+
+def wall_limit(rubric):
+    """./grade.sh's: beyond it the grading is stopped."""
+    return Grader(argparse.Namespace(out='.'), rubric).wall_limit
+
+
+def grade_folder(rubric, folder, student, work, student_user='student'):
+    """The result (results.score's dict) of the submission in `folder`. `work` is the trusted
+    side's own folder (its logs and the result; nothing of the student's side can write there)."""
+    started = time.monotonic()
+    submission = tempfile.mkdtemp(prefix='course-submission-')
+    try:
+        package = stage(folder, rubric, submission)
+    except SubmissionError as error:
+        shutil.rmtree(submission, ignore_errors=True)
+        return results.failed(rubric, student, str(error), seconds=time.monotonic() - started)
+    out = tempfile.mkdtemp(prefix='course-grader-', dir=work)
+    # A new name: grade_submission makes it, open to the student's side (sticky).
+    scratch = os.path.join(tempfile.gettempdir(), 'course-student-%s' % uuid.uuid4().hex[:8])
+    argv = ['rosrun', 'course_grader', 'grade_submission', '--student-user', student_user, '--lab', rubric.lab,
+            '--package', os.path.join(submission, package), '--out', out, '--scratch', scratch,
+            '--student', student]
+    env = dict(os.environ, HOME=out, ROS_HOME=os.path.join(out, 'ros'))
+    log = os.path.join(out, 'grader.txt')
+    limit = wall_limit(rubric)
+    reason = None
+    with open(log, 'wb') as stream:
+        process = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=stream, stderr=subprocess.STDOUT, env=env,
+                                   start_new_session=True, preexec_fn=_limit_resources)
+        try:
+            code = process.wait(limit)
+            if code != 0:
+                reason = 'the grading stopped with exit status %d: %s' % (code, feedback.log_tail(log, 5))
+        except subprocess.TimeoutExpired:
+            reason = 'the grading did not end within %d s and was stopped' % limit
+        finally:
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(process.pid, signal.SIGKILL)
+            process.wait()
+            stop_user(pwd.getpwnam(student_user).pw_uid)
+    result = results.read(rubric, student, out) or results.failed(
+        rubric, student, reason or 'the grading stopped without a result: %s' % feedback.log_tail(log, 5))
+    result['seconds'] = time.monotonic() - started
+    for folder in (out, scratch, submission):
+        shutil.rmtree(folder, ignore_errors=True)
+    return result
+
+
+def report(result, stream, runner_log=False):
+    """Each criterion, its points, reason and hints, then the total (as `check` prints them). In a
+    runner's log, between ::stop-commands:: and its token, so that nothing a reason quotes of the
+    student's output is taken for a workflow command."""
+    token = uuid.uuid4().hex
+    with contextlib.redirect_stdout(stream):
+        if runner_log:
+            print('::stop-commands::%s' % token)
+        print('%s: %s' % (result['lab'], result['student']))
+        error = result.get('error')
+        if not (error and all(c['reason'] == error for c in result['criteria'])):   # else nothing was graded
+            print_result(dict(result, error=None))
+        if error:
+            print('not fully graded: %s' % error)
+        print('total %g / %g (%.0f s)' % (result['score'], result['max_score'], result['seconds'] or 0))
+        if runner_log:
+            print('::%s::' % token)
+    stream.flush()
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(
+        prog='rosrun course_grader grade_platform', description='Grades the submission in FOLDER for a '
+        'platform, as the trusted side of the course\'s image (run as root): classroom prints the outputs '
+        'of the workflow\'s grading step on standard output (the report on standard error); gradescope '
+        'writes RESULTS/results.json (the report on standard output).')
+    parser.add_argument('platform', choices=('classroom', 'gradescope'))
+    parser.add_argument('lab', help='the lab: %s' % ', '.join(rubrics.labs()))
+    parser.add_argument('folder', help='the submission (the repository, or what the student uploaded)')
+    parser.add_argument('--results', default='/autograder/results', help='gradescope: where results.json goes')
+    parser.add_argument('--student', default='submission', help='the name in the report')
+    parser.add_argument('--work', help='the trusted side\'s folder (default: a new one in the temporary folder)')
+    args = parser.parse_args(sys.argv[1:] if argv is None else argv)
+    # Standard output carries the outputs only: whatever else is printed goes to standard error.
+    result_stream = os.fdopen(os.dup(1), 'w') if args.platform == 'classroom' else sys.stdout
+    if args.platform == 'classroom':
+        os.dup2(2, 1)
+    try:
+        rubric = rubrics.load(args.lab)
+    except rubrics.RubricError as error:
+        print('grade_platform: %s' % error, file=sys.stderr)
+        return 2
+    work = args.work or tempfile.mkdtemp(prefix='course-grader-')
+    os.makedirs(work, mode=0o700, exist_ok=True)
+    try:
+        result = grade_folder(rubric, args.folder, args.student, work)
+    except Exception as error:   # a fault of the grader: the platform still gets a result saying so
+        result = results.failed(rubric, args.student, 'the grader failed on this submission: %r' % error, seconds=0)
+    if args.platform == 'classroom':
+        report(result, sys.stderr, runner_log=True)
+        result_stream.write(classroom.output_lines(result))
+        result_stream.close()
+    else:
+        os.makedirs(args.results, exist_ok=True)
+        gradescope.write(result, args.results)
+        report(result, sys.stdout)
+    return 0

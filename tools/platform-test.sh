@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# CI, after tools/grade-test.sh: the platforms' side of the grading run here as the platforms run it
+# (src/course_grader/test/platforms_in_containers.py): the GitHub Classroom workflow's steps in
+# order on example students and bad pushes, and Gradescope's run_autograder in the course's image,
+# in the image tools/grade-test.sh grades with.
+# Usage: tools/platform-test.sh [pytest options]
+exec "$(dirname "${BASH_SOURCE[0]}")/grade-test.sh" --platforms -s "$@"
