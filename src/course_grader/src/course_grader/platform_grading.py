@@ -20,8 +20,8 @@ import uuid
 from course_grader import classroom, feedback, gradescope, results, rubric as rubrics
 from course_grader.check import print_result
 from course_grader.grader import Grader, _limit_resources
-from course_grader.submission import (ARCHIVE_SUFFIXES, MAX_UNPACKED_BYTES, SubmissionError, check_folder,
-                                      find_package, unpack)
+from course_grader.submission import (MAX_UNPACKED_BYTES, SubmissionError, check_folder, find_package, unpack,
+                                      upload_inside)
 
 
 def is_empty(folder):
@@ -32,7 +32,7 @@ def is_empty(folder):
 def stage(folder, rubric, staging):
     """The submission in `staging` (an empty folder), readable by the student's side: a copy of
     `folder`, or, when it holds one archive and no package.xml (an uploaded .zip), the archive
-    unpacked. Returns the package's folder relative to staging, or raises a SubmissionError that
+    unpacked (submission.upload_inside). Returns the package's folder relative to staging, or raises a SubmissionError that
     says in one sentence why there is none to grade."""
     if not os.path.isdir(folder):
         raise SubmissionError('no submission at %s' % folder)
@@ -40,10 +40,9 @@ def stage(folder, rubric, staging):
         raise SubmissionError('the submission is empty: hand in the package %s (the folder made by '
                               'catkin_create_pkg %s), at the top or in src/' % (rubric.package, rubric.package))
     check_folder(folder)
-    names = [name for name in os.listdir(folder) if not name.startswith('.')]
-    archives = [name for name in names if name.endswith(ARCHIVE_SUFFIXES)]
-    if len(names) == 1 and archives and os.path.isfile(os.path.join(folder, archives[0])):
-        unpack(os.path.join(folder, archives[0]), staging)
+    upload = upload_inside(folder)   # the one archive uploaded, as ./grade.sh takes it
+    if upload:
+        unpack(upload, staging)
     else:
         size = 0
         for parent, dirs, files in os.walk(folder):
