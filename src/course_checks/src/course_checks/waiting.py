@@ -1,7 +1,7 @@
 """Waiting for what a node does, within the time a run has left: False on time-out, not an error."""
 import time
 
-from course_testing.waiting import wait_until
+from course_testing.waiting import poll_until
 
 
 class Deadline:
@@ -17,8 +17,5 @@ class Deadline:
 def wait_for(condition, seconds, gave_up=None, poll=0.05):
     """Whether condition() holds within `seconds`; False on time-out, or as soon as gave_up()
     (say: the node ended, nothing more will come from it)."""
-    try:
-        wait_until(lambda: condition() or (gave_up is not None and gave_up()), seconds, poll=poll)
-    except AssertionError:
-        return False
+    poll_until(lambda: condition() or (gave_up is not None and gave_up()), seconds, poll)
     return bool(condition())
