@@ -24,3 +24,11 @@ def test_giving_up_ends_the_wait_at_once_with_false():
 def test_a_deadline_leaves_at_least_a_little_time():
     assert Deadline(-5).left() == 0.5
     assert 9 < Deadline(10).left() <= 10
+
+
+def test_a_deadline_waits_for_the_shorter_of_its_time_left_and_the_seconds_given():
+    started = time.monotonic()
+    assert Deadline(0.6).wait(lambda: False, 30) is False
+    assert Deadline(30).wait(lambda: False, 0.1) is False
+    assert time.monotonic() - started < 2
+    assert Deadline(30).wait(lambda: True, gave_up=lambda: True) is True
