@@ -1,7 +1,6 @@
 #!/usr/bin/env python3
 """laser_data.py on fake_tb3 prints the scan's ranges; the slide's shell commands work meanwhile."""
 import math
-import subprocess
 
 import rospy
 import rostest
@@ -10,14 +9,9 @@ from sensor_msgs.msg import LaserScan
 from course_checks import laser
 from course_checks.laser import printed_blocks
 from course_checks.robot import node_names
+from course_testing.processes import run
 from course_testing.waiting import wait_until
 from move_turtlebot3_testing import LabTestCase, Launch
-
-
-def run(*argv):
-    result = subprocess.run(list(argv), capture_output=True, text=True, timeout=60)
-    return result.returncode, result.stdout + result.stderr
-
 
 BEAMS = [0, 90, 180, 270, 359]   # the slide's five beams
 BLOCKS = 10                      # printed scans checked

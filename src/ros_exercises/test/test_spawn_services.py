@@ -10,8 +10,9 @@ import rostest
 from turtlesim.srv import Kill
 
 from course_checks.turtle import at_pose, turtle_poses
+from course_testing.processes import run
 from course_testing.waiting import wait_until
-from ros_exercises_testing import Command, run
+from ros_exercises_testing import Command
 
 
 def spawn_turtle(node_name, *arguments):
