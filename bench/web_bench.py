@@ -18,7 +18,6 @@ every scan (5 Hz); one viewer <= 5 % of a core beyond no viewer.
 """
 import argparse
 import os
-import socket
 import subprocess
 import sys
 import threading
@@ -31,7 +30,7 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 
 from course_testing.browser import start_browser
-from course_testing.processes import free_port, stop_process_group
+from course_testing.processes import free_port, port_open, stop_process_group
 from course_testing.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn
@@ -159,11 +158,7 @@ class Bench:
     def start_view(self):
         self.view_port = free_port()
         self.view = self.start(['rosrun', 'course_web', 'view', '_port:=%d' % self.view_port])
-
-        def listening():
-            with socket.socket() as probe:
-                return probe.connect_ex(('127.0.0.1', self.view_port)) == 0
-        wait_until(listening, 60, 'the view', poll=0.2)
+        wait_until(lambda: port_open(self.view_port), 60, 'the view', poll=0.2)
 
     def stop_view(self):
         if self.browser is not None:

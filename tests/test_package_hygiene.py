@@ -1,4 +1,4 @@
-"""Every package passes catkin_lint -W2 and the README's commands exist as the README prints them."""
+"""Every package passes catkin_lint -W3 and the README's commands exist as the README prints them."""
 import os
 import re
 import subprocess
@@ -6,8 +6,8 @@ import subprocess
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def test_catkin_lint_is_clean_at_warning_level_2():
-    result = subprocess.run(['catkin_lint', '-W2', '--strict', os.path.join(ROOT, 'src')],
+def test_catkin_lint_is_clean_at_warning_level_3():
+    result = subprocess.run(['catkin_lint', '-W3', '--strict', os.path.join(ROOT, 'src')],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
     assert result.returncode == 0, result.stdout
 

@@ -5,7 +5,6 @@ and Ctrl-C leaves no port behind. Screenshots: the directory in $COURSE_WEB_SCRE
 temporary one (logged)."""
 import math
 import os
-import socket
 import subprocess
 import tempfile
 import unittest
@@ -21,7 +20,7 @@ from selenium.webdriver.common.keys import Keys
 from std_srvs.srv import Trigger
 
 from course_testing.browser import element_pixels, save_pixels, start_browser
-from course_testing.processes import free_port, stop_process_group
+from course_testing.processes import free_port, port_open, stop_process_group
 from course_testing.recording import TopicRecorder
 from course_testing.waiting import wait_until
 from turtlesim.msg import Pose
@@ -53,7 +52,7 @@ class BrowserTest(unittest.TestCase):
         cls.port = free_port()
         cls.view = subprocess.Popen(['rosrun', 'course_web', 'view', '__name:=course_web',
                                      '_port:=%d' % cls.port], start_new_session=True)
-        wait_until(lambda: cls.port_open(), 60, 'the view to listen on port %d' % cls.port, poll=0.2)
+        wait_until(lambda: port_open(cls.port), 60, 'the view to listen on port %d' % cls.port, poll=0.2)
         cls.browser = start_browser()
         cls.browser.get('http://localhost:%d/' % cls.port)
         cls.pose = TopicRecorder('/turtle1/pose', Pose)
@@ -64,11 +63,6 @@ class BrowserTest(unittest.TestCase):
     def tearDownClass(cls):
         cls.browser.quit()
         stop_process_group(cls.view)
-
-    @classmethod
-    def port_open(cls):
-        with socket.socket() as probe:
-            return probe.connect_ex(('127.0.0.1', cls.port)) == 0
 
     def script(self, text):
         return self.browser.execute_script(text)
@@ -197,7 +191,7 @@ class BrowserTest(unittest.TestCase):
 
     def test_4_ctrl_c_leaves_no_port(self):
         self.assertEqual(stop_process_group(self.view, timeout=10), 0)
-        self.assertFalse(self.port_open())
+        self.assertFalse(port_open(self.port))
 
 
 if __name__ == '__main__':

@@ -17,17 +17,31 @@ class Launch(launch.Launch):
     def __init__(self, *argv):
         super().__init__(argv)
 
+    def wait_for_output(self, text, timeout):
+        return wait_until(lambda: text in self.output, timeout, what='%r in the output' % text)
+
     @classmethod
     def package_file(cls, launch_file, **args):
         return cls('roslaunch', 'move_turtlebot3', launch_file,
                    *['%s:=%s' % item for item in sorted(args.items())])
 
 
+class Watch(RobotWatch):
+    """The checks' RobotWatch, with waits that fail the test with a sentence on time-out."""
+
+    def wait_until_running(self, timeout=60):
+        wait_until(self.running, timeout, what='odom, scan and collisions from fake_tb3')
+
+    def wait_sim_seconds(self, seconds, timeout):
+        end = self.now() + seconds
+        wait_until(lambda: self.now() >= end, timeout, what='%.0f simulated seconds' % seconds)
+
+
 class LabTestCase(unittest.TestCase):
     """A test case with a RobotWatch, and a Launch (self.launch) stopped at its end."""
 
     def setUp(self):
-        self.watch = RobotWatch()
+        self.watch = Watch()
         self.launch = None
 
     def tearDown(self):

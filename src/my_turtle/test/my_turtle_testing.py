@@ -1,9 +1,8 @@
 """Helpers for the my_turtle rostests: record turtle1's poses, run a node and keep what it prints."""
 import re
-import threading
 
 from course_checks.turtle import turtle_poses
-from course_testing.processes import PtyProgram
+from course_testing.processes import ReadPtyProgram
 from course_testing.waiting import wait_until
 
 # A pose line as the slide shows it, e.g. "[ INFO] [1513815819.814175430]: x: 8.46, y: 5.54"
@@ -19,20 +18,12 @@ def turtle1_poses():
     return recorder
 
 
-class PrintingNode(PtyProgram):
+class PrintingNode(ReadPtyProgram):
     """A node started with rosrun, printing into a pseudo-terminal as it would into a terminal
-    (into a pipe rosconsole would hold lines back in its buffer). A thread keeps reading, or the
-    node would block once the terminal's buffer is full."""
+    (into a pipe rosconsole would hold lines back in its buffer)."""
 
     def __init__(self, package, executable):
         super().__init__(['rosrun', package, executable])
-        self._draining = True
-        self._drain_thread = threading.Thread(target=self._drain, daemon=True)
-        self._drain_thread.start()
-
-    def _drain(self):
-        while self._draining:
-            self.read_available(0.05)
 
     @property
     def lines(self):
@@ -42,12 +33,6 @@ class PrintingNode(PtyProgram):
     def wait_for_line(self, text, timeout):
         return wait_until(lambda: any(text in line for line in self.lines), timeout,
                           'the node to print %r' % text)
-
-    def stop(self, timeout=10):
-        """Ctrl-C, as in the terminal; returns the exit status."""
-        self._draining = False
-        self._drain_thread.join()
-        return super().stop(timeout)
 
 
 def hold_key(terminal, key, condition, timeout, what):

@@ -1,30 +1,18 @@
 """What the ros_exercises rostests share: run the commands a student types and save turtlesim's canvas."""
 import re
-import subprocess
-import threading
 
 import rospy
 from std_srvs.srv import Trigger
 
-from course_testing.processes import PtyProgram, stop_process_group
+from course_testing.processes import ReadPtyProgram
 from course_testing.waiting import wait_until
 
 
 class Command:
-    """A roslaunch or rosrun command running in a terminal, as a student runs it.
-
-    A thread reads its output all the time: a node that cannot write its log lines would stall.
-    """
+    """A roslaunch or rosrun command running in a terminal, as a student runs it."""
 
     def __init__(self, *argv):
-        self.program = PtyProgram(list(argv))
-        self._reading = True
-        self._reader = threading.Thread(target=self._read, daemon=True)
-        self._reader.start()
-
-    def _read(self):
-        while self._reading:
-            self.program.read_available(0.05)
+        self.program = ReadPtyProgram(list(argv))
 
     def matches(self, pattern):
         """Every match of the regular expression in what the command printed so far."""
@@ -38,17 +26,7 @@ class Command:
 
     def stop(self, timeout=20):
         """Ctrl-C, then the exit code once everything it started has stopped."""
-        stop_process_group(self.program.process, timeout)
-        self._reading = False
-        self._reader.join()
-        return self.program.stop()
-
-
-def run(*argv, timeout=30):
-    """Runs a command to its end; returns its exit code and everything it printed."""
-    result = subprocess.run(argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
-                            timeout=timeout)
-    return result.returncode, result.stdout
+        return self.program.stop(timeout)
 
 
 def save_canvas(path):

@@ -9,9 +9,10 @@ from std_msgs.msg import Int32
 
 from course_checks import rates
 from course_checks.rates import rate_of
+from course_testing.processes import run
 from course_testing.recording import TopicRecorder
 
-from ros_exercises_testing import Command, run
+from ros_exercises_testing import Command
 
 FAST_ID = '4095127'
 SLOW_ID = '907'

@@ -7,6 +7,8 @@ import math
 import numpy
 from PIL import Image
 
+from course_checks.verdict import Verdict
+
 WORLD_SIZE = 11.088889        # metres: turtlesim's world is a square of this side
 PIXELS_PER_METRE = 45.0
 PEN_COLOUR = (179, 184, 255)  # turtlesim's default pen
@@ -34,6 +36,15 @@ def distances_to_polygon(points, vertices):
         nearest = start + along[:, None] * edge
         best = numpy.minimum(best, numpy.hypot(*(points - nearest).T))
     return best
+
+
+def closed_path(path, outline, tolerance):
+    """The path ((x, y) rows, from its start) follows the closed outline (vertices, start first)
+    and ends at its start, each within tolerance metres."""
+    away = distances_to_polygon(path, outline).max()
+    missed = math.hypot(path[-1][0] - outline[0][0], path[-1][1] - outline[0][1])
+    return Verdict(away <= tolerance and missed <= tolerance, 'the path at most %.3f m off the outline, ending '
+                   '%.3f m from the start' % (away, missed))
 
 
 def fit_circle(points):

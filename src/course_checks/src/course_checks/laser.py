@@ -2,8 +2,9 @@
 they are ranges of scans the simulator published."""
 import math
 
+from course_checks.verdict import Verdict
+
 LABELS = ['s1 [0]', 's2 [90]', 's3 [180]', 's4 [270]', 's5 [359]']
-BEAMS = [0, 90, 180, 270, 359]
 SEPARATOR = '=' * 10
 
 
@@ -42,8 +43,21 @@ def same_range(printed, sent):
     return printed == sent or abs(printed - sent) <= 1e-3
 
 
-def unmatched_blocks(blocks, scans, beams=BEAMS):
+def unmatched_blocks(blocks, scans, beams):
     """The printed blocks that are no published scan's ranges at those beams."""
     published = [[scan.ranges[i] if i < len(scan.ranges) else math.nan for i in beams] for scan in scans]
     return [block for block in blocks
             if not any(all(same_range(p, s) for p, s in zip(block, ranges)) for ranges in published)]
+
+
+def printed_scans(blocks, scans, beams, needed):
+    """At least `needed` blocks were printed, and each is the ranges at `beams` of a scan that was
+    published. The first and the newest block are not checked: their scan may have come before
+    the checker listened, or not reached it yet."""
+    checked = blocks[1:-1] or blocks
+    unmatched = unmatched_blocks(checked, scans, beams)
+    seen = '%d scans printed, %d of %d checked match a published scan' % (
+        len(blocks), len(checked) - len(unmatched), len(checked))
+    if unmatched:
+        seen += ' (one printed %s)' % ', '.join(unmatched[0])
+    return Verdict(len(blocks) >= needed and not unmatched, seen)

@@ -9,7 +9,6 @@ import subprocess
 import threading
 
 from course_testing.processes import stop_process_group
-from course_testing.waiting import wait_until
 
 MAX_LINES = 5000             # lines of output kept in memory
 MAX_LOG_BYTES = 5 * 2 ** 20  # of output written to the log file
@@ -67,9 +66,6 @@ class Launch:
 
     def ended(self):
         return self.process.poll() is not None
-
-    def wait_for_output(self, text, timeout):
-        return wait_until(lambda: text in self.output, timeout, what='%r in the output' % text)
 
     def error_lines(self, count=2):
         """The first lines that look like errors (roslaunch's red ones, exceptions), joined: a hint

@@ -12,7 +12,6 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import UInt32
 
 from course_testing.recording import TopicRecorder, path_length
-from course_testing.waiting import wait_until
 
 SIMULATOR = '/fake_tb3'
 
@@ -98,16 +97,9 @@ class RobotWatch:
         """The simulator publishes odometry and scans and has told its collision count."""
         return bool(self._odom.count() and self._scans.count() and self.collisions is not None)
 
-    def wait_until_running(self, timeout=60):
-        wait_until(self.running, timeout, what='odom, scan and collisions from fake_tb3')
-
     def now(self):
         """Simulated time of the latest odometry."""
         return self._odom.latest().header.stamp.to_sec()
-
-    def wait_sim_seconds(self, seconds, timeout):
-        end = self.now() + seconds
-        wait_until(lambda: self.now() >= end, timeout, what='%.0f simulated seconds' % seconds)
 
     def poses_since(self, start):
         return [pose for pose in self.copy('poses') if pose[0] >= start]

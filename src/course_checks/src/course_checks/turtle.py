@@ -13,6 +13,10 @@ from course_testing.recording import TopicRecorder, path_length
 POSE_RATE_HZ = 62.5  # turtlesim publishes the pose at every 16 ms tick
 TICK_SECONDS = 0.016
 JITTER = 0.25       # seconds a pose may arrive late on a busy machine (jumps)
+# When a measurement starts (not grading choices: those are the caller's, from the rubric):
+MOVING_M = 0.01      # over the last ten poses heard: the turtle moves
+STILL_M = 1e-3       # over STILL_SECONDS of poses: the turtle stands still
+STILL_SECONDS = 0.3
 
 
 def turtle_poses(turtle):
@@ -44,6 +48,39 @@ def tick_speeds(samples):
     """(linear m/s, angular rad/s) of the turtle in turtlesim's time, from per_tick."""
     step, turn = per_tick(samples)
     return step / TICK_SECONDS, turn / TICK_SECONDS
+
+
+def drives_at(samples, linear, angular, tolerance):
+    """The recorded (time, pose) entries show the turtle at linear m/s turning angular rad/s, each
+    within tolerance (relative), in turtlesim's own time (tick_speeds)."""
+    if len(samples) < 2:
+        return Verdict(False, '%d poses heard' % len(samples))
+    speed, rate = tick_speeds(samples)
+    ok = abs(speed - linear) <= tolerance * abs(linear) and abs(rate - angular) <= tolerance * abs(angular)
+    return Verdict(ok, '%.2f m/s turning %.2f rad/s' % (speed, rate))
+
+
+def moving(recorder):
+    """The turtle moved over the last ten poses heard."""
+    return travelled(recorder.entries()[-10:]) > MOVING_M
+
+
+def standing(recorder):
+    """The turtle stands still over the next STILL_SECONDS of poses (records them)."""
+    return travelled(recorder.record(STILL_SECONDS)) < STILL_M
+
+
+def printed_position(printed, pose, tolerance):
+    """Among the printed (x, y) is the pose's position, within tolerance (metres) on each."""
+    matched = any(abs(x - pose.x) <= tolerance and abs(y - pose.y) <= tolerance for x, y in printed)
+    return Verdict(matched, 'last printed x: %.2f, y: %.2f' % printed[-1] if printed
+                   else 'no line `x: ..., y: ...` printed')
+
+
+def at_pose(pose, expected, tolerance):
+    """The pose is the expected (x, y, theta), each within tolerance."""
+    seen = (pose.x, pose.y, pose.theta)
+    return Verdict(max(abs(a - b) for a, b in zip(seen, expected)) <= tolerance, 'at (%.2f, %.2f, %.2f)' % seen)
 
 
 def duration(samples):
@@ -90,7 +127,7 @@ def moving_points(poses):
     return poses[poses[:, 3] > 0, :2] if len(poses) else poses
 
 
-def circle(points, centre, radius, tolerance=0.02):
+def circle(points, centre, radius, tolerance):
     """Points (N x 2) on a circle of `radius` around `centre`, within `tolerance` (relative): the
     fitted radius, the fitted centre and every point."""
     if len(points) < 3:

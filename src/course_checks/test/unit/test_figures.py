@@ -74,3 +74,13 @@ def test_corners_from_sides_report_a_missing_side():
     only_first_side = numpy.column_stack([numpy.linspace(1, 4, 100), numpy.ones(100)])
     with pytest.raises(AssertionError, match='nothing drawn'):
         figures.corners_from_sides(only_first_side, ideal)
+
+
+def test_a_closed_path_follows_the_outline_back_to_its_start():
+    square = figures.polygon(1.0, 1.0, 0.0, 2.0, 4)
+    around = numpy.concatenate([numpy.linspace(a, b, 50) for a, b in zip(square, numpy.roll(square, -1, axis=0))])
+    closed = figures.closed_path(around, square, 0.05)
+    assert closed.passed and closed.reason == 'the path at most 0.000 m off the outline, ending 0.000 m from the start'
+    short = figures.closed_path(around[:-20], square, 0.05)
+    assert not short.passed and 'ending 0.8' in short.reason
+    assert not figures.closed_path(around + (0.1, 0.0), square, 0.05).passed

@@ -61,3 +61,28 @@ def test_circle_within_and_beyond_its_tolerance():
     assert turtle.circle(points, (3, 4), 1.0, 0.02).passed
     wide = turtle.circle(points * 1.05 - (0.15, 0.2), (3, 4), 1.0, 0.02)
     assert not wide.passed and 'a circle of radius 1.050 m' in wide.reason
+
+
+def test_drives_at_judges_the_speed_in_turtlesim_time_even_with_poses_missed():
+    samples = heard(new_world(), 200, every=1)
+    verdict = turtle.drives_at(samples, 1.0, 0.5, 0.02)
+    assert verdict.passed and verdict.reason == '1.00 m/s turning 0.50 rad/s'
+    # A busy machine that hears the poses late does not slow the turtle down.
+    late = [(arrival * 3, pose) for arrival, pose in samples]
+    assert turtle.drives_at(late, 1.0, 0.5, 0.02).passed
+    assert not turtle.drives_at(samples, 2.0, 0.5, 0.1).passed
+    assert turtle.drives_at(samples[:1], 1.0, 0.5, 0.1).reason == '1 poses heard'
+
+
+def test_a_printed_position_is_the_pose_within_the_tolerance():
+    pose = Pose(x=5.544445, y=7.0)
+    assert turtle.printed_position([(1.0, 1.0), (5.54, 7.0)], pose, 0.011).passed
+    off = turtle.printed_position([(5.58, 7.0)], pose, 0.011)
+    assert not off.passed and off.reason == 'last printed x: 5.58, y: 7.00'
+    assert turtle.printed_position([], pose, 0.011).reason == 'no line `x: ..., y: ...` printed'
+
+
+def test_at_pose_on_x_y_and_theta():
+    assert turtle.at_pose(Pose(x=1.0, y=1.0, theta=0.0), (1.0, 1.0, 0.0), 1e-5).passed
+    turned = turtle.at_pose(Pose(x=1.0, y=1.0, theta=0.1), (1.0, 1.0, 0.0), 1e-5)
+    assert not turned.passed and turned.reason == 'at (1.00, 1.00, 0.10)'

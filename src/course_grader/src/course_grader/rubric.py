@@ -63,8 +63,9 @@ class Rubric:
 
     def check_against(self, known, lab_module):
         """Refuse, before anything runs, a criterion the lab does not check, a check of the lab the
-        rubric forgets, and a setting a check reads that the rubric does not give; `known` is the
-        lab's CRITERIA: {criterion id: settings its check reads}."""
+        rubric forgets, a setting a check reads that the rubric does not give, and a setting the
+        rubric gives that no check reads (a misspelt threshold would otherwise change nothing);
+        `known` is the lab's CRITERIA: {criterion id: settings its check reads}."""
         ids = [c.id for c in self.criteria]
         unknown = [i for i in ids if i not in known]
         if unknown:
@@ -79,6 +80,10 @@ class Rubric:
             if missing:
                 raise RubricError('%s: criterion %s has no %s (its check in %s reads them)' % (
                     self.path, criterion.id, ', '.join(missing), lab_module))
+            unread = sorted(key for key in criterion.settings if key not in known[criterion.id])
+            if unread:
+                raise RubricError('%s: criterion %s gives %s, which its check in %s does not read (it reads: %s)' % (
+                    self.path, criterion.id, ', '.join(unread), lab_module, ', '.join(known[criterion.id]) or 'none'))
 
     @property
     def max_score(self):

@@ -1,5 +1,6 @@
 """Rubric files: the shipped ones load, a teacher's mistakes are named."""
 import pytest
+import yaml
 
 from course_grader import rubric
 
@@ -41,3 +42,53 @@ def test_bad_rubrics_are_named(tmp_path, text, message):
 def test_unknown_lab_lists_the_labs():
     with pytest.raises(rubric.RubricError, match='no rubric for lab .nope. .the labs are: .*move_turtlebot3'):
         rubric.load('nope')
+
+
+LAB = 'lab: move_turtlebot3\npackage: move_turtlebot3\n'
+LIMITS = 'limits: {build_seconds: 1, run_seconds: 1, start_seconds: 1, stop_seconds: 1}\n'
+
+
+def shipped_with(path, change):
+    """The shipped move_turtlebot3 rubric, its criteria changed by change(list of mappings), at path."""
+    data = yaml.safe_load(open(rubric.load('move_turtlebot3').path))
+    change(data['criteria'])
+    path.write_text(yaml.safe_dump(data))
+    return str(path)
+
+
+def criterion_of(criteria, criterion_id):
+    return next(c for c in criteria if c['id'] == criterion_id)
+
+
+@pytest.mark.parametrize('change, message', [
+    (lambda criteria: criteria.append({'id': 'trajectory_speed', 'title': 't', 'points': 1}),
+     r'criterion trajectory_speed is not one that course_grader.labs.move_turtlebot3 checks '
+     r'\(it checks: builds, executable, trajectory_rate, .*avoid_stays\)'),
+    (lambda criteria: criteria.remove(criterion_of(criteria, 'laser_data')),
+     r'criterion laser_data of course_grader.labs.move_turtlebot3 is missing from the rubric'),
+    (lambda criteria: criterion_of(criteria, 'avoid_stops').pop('front_max'),
+     r'criterion avoid_stops has no front_max \(its check in course_grader.labs.move_turtlebot3 reads them\)'),
+    (lambda criteria: criterion_of(criteria, 'avoid_stays').update(max_crep=0.2),
+     r'criterion avoid_stays gives max_crep, which its check in course_grader.labs.move_turtlebot3 does not read '
+     r'\(it reads: .*max_creep'),
+])
+def test_a_rubric_that_does_not_fit_its_lab_is_refused_naming_what(tmp_path, change, message):
+    with pytest.raises(rubric.RubricError, match=message):
+        rubric.load(shipped_with(tmp_path / 'x.yaml', change))
+
+
+@pytest.mark.parametrize('limits', ['', 'limits: {build_seconds: 1, run_seconds: 1, start_seconds: 1}\n',
+                                    'limits: [1, 2]\n'])
+def test_missing_limits_are_named(tmp_path, limits):
+    path = tmp_path / 'x.yaml'
+    path.write_text(LAB + limits + 'criteria: [{id: builds, title: t, points: 1}]\n')
+    with pytest.raises(rubric.RubricError, match='limits must give build_seconds, run_seconds, start_seconds, '
+                                                 'stop_seconds'):
+        rubric.load(str(path))
+
+
+def test_a_lab_the_grader_does_not_have_is_named(tmp_path):
+    path = tmp_path / 'x.yaml'
+    path.write_text('lab: nope\npackage: x\n' + LIMITS + 'criteria: [{id: builds, title: t, points: 1}]\n')
+    with pytest.raises(rubric.RubricError, match="lab 'nope' is none of the grader's .move_turtlebot3, my_turtle"):
+        rubric.load(str(path))

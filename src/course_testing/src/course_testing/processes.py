@@ -5,6 +5,7 @@ import select
 import signal
 import socket
 import subprocess
+import threading
 
 from course_testing.waiting import wait_until
 
@@ -15,6 +16,20 @@ def free_port():
     with socket.socket() as probe:
         probe.bind(('127.0.0.1', 0))
         return probe.getsockname()[1]
+
+
+def port_open(port):
+    """Something listens on this TCP port of loopback (a server a test started is up)."""
+    with socket.socket() as probe:
+        return probe.connect_ex(('127.0.0.1', port)) == 0
+
+
+def run(*argv, timeout=60):
+    """Run a command (rostopic, rosrun ...) to its end; its exit code and everything it printed
+    (standard output and error as they came)."""
+    result = subprocess.run(argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                            timeout=timeout)
+    return result.returncode, result.stdout
 
 
 def restore_ctrl_c():
@@ -90,3 +105,25 @@ class PtyProgram:
         self.read_available(0)
         os.close(self._fd)
         return self.process.returncode
+
+
+class ReadPtyProgram(PtyProgram):
+    """A PtyProgram whose output a thread keeps reading: a program nobody reads blocks once the
+    terminal's buffer is full (a ROS node that cannot write its log lines stalls)."""
+
+    def __init__(self, argv, env=None):
+        super().__init__(argv, env)
+        self._reading = True
+        self._reader = threading.Thread(target=self._read, daemon=True)
+        self._reader.start()
+
+    def _read(self):
+        while self._reading:
+            self.read_available(0.05)
+
+    def stop(self, timeout=10):
+        """Ctrl-C, read until everything it started has stopped; returns the exit code."""
+        stop_process_group(self.process, timeout)
+        self._reading = False
+        self._reader.join()
+        return super().stop(timeout)

@@ -3,7 +3,7 @@ import socket
 import subprocess
 import sys
 
-from course_testing.processes import free_port, ignored_signals, stop_process_group
+from course_testing.processes import ReadPtyProgram, free_port, ignored_signals, port_open, run, stop_process_group
 
 TRAPS_SIGINT = '''
 import signal, sys, time
@@ -77,3 +77,25 @@ def test_restore_ctrl_c_gives_the_programs_started_after_it_the_default_sigint()
     result = subprocess.run([sys.executable, '-c', unrestored], stdout=subprocess.PIPE,
                             universal_newlines=True, timeout=30, preexec_fn=as_a_background_job)
     assert signal.SIGINT in ignored_signals(result.stdout)
+
+
+def test_a_port_is_open_while_something_listens_on_it():
+    with socket.socket() as server:
+        server.bind(('127.0.0.1', 0))
+        server.listen()
+        port = server.getsockname()[1]
+        assert port_open(port)
+    assert not port_open(port)
+
+
+def test_run_gives_the_exit_code_and_both_outputs_in_order():
+    code, output = run(sys.executable, '-c', 'import sys; print("out", flush=True); sys.exit("err")')
+    assert (code, output) == (1, 'out\nerr\n')
+
+
+def test_a_read_program_that_prints_more_than_a_terminal_holds_does_not_block():
+    # 1 MB into a pseudo-terminal nobody reads would block the program at about 4 kB.
+    program = ReadPtyProgram([sys.executable, '-c', 'print("x" * 1000000); print("done")'])
+    assert program.process.wait(30) == 0
+    assert program.stop() == 0
+    assert program.output.rstrip().endswith('done')

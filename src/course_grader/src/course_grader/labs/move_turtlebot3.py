@@ -2,10 +2,10 @@
 the checks of course_checks that move_turtlebot3's own tests use."""
 import math
 
-from course_checks import figures, laser, rates
+from course_checks import driving, laser
 from course_checks.robot import SIMULATOR, RobotWatch, largest_move, travelled
 from course_checks.verdict import Verdict
-from course_checks.waiting import Deadline, wait_for
+from course_checks.waiting import Deadline
 from course_grader import feedback
 from course_grader.labs.common import StudentNode, faked, run_each
 
@@ -13,11 +13,11 @@ SIMULATION = ('script', 'world', 'x_pos', 'y_pos', 'noise_stddev', 'noise_seed',
 CRITERIA = {
     'builds': (),
     'executable': ('scripts',),
-    'trajectory_rate': ('script', 'linear', 'angular', 'speed_tolerance', 'rate_hz', 'rate_tolerance',
-                        'real_time_factor'),
-    'trajectory_circle': ('radius_tolerance', 'periods'),
+    'trajectory_rate': ('script', 'world', 'x_pos', 'y_pos', 'noise_stddev', 'real_time_factor', 'linear',
+                        'angular', 'speed_tolerance', 'rate_hz', 'rate_tolerance'),
+    'trajectory_circle': ('radius_tolerance', 'periods', 'min_travel'),
     'laser_data': SIMULATION + ('beams', 'blocks'),
-    'avoid_stops': SIMULATION + ('min_drive', 'front_min', 'front_max'),
+    'avoid_stops': SIMULATION + ('min_drive', 'stopped_seconds', 'front_min', 'front_max'),
     'avoid_stays': ('stay_seconds', 'max_creep'),
 }
 
@@ -40,12 +40,6 @@ def static_checks(session):
     return {'executable': Verdict(True, 'all executable, with a Python 3 #! line')}
 
 
-def _wait(condition, deadline, node=None):
-    """condition() within the run's time left; False on time-out, or as soon as the student's node
-    (if given) has ended: nothing more will come from it."""
-    return wait_for(condition, deadline.left(), gave_up=node.ended if node else None)
-
-
 class Run:
     """The simulator and one of the student's nodes on it, watched, stopped at the end."""
 
@@ -61,7 +55,7 @@ class Run:
         # fake_tb3 is the course's: it runs on the trusted side, with the course's environment.
         self.sim = session.trusted(['roslaunch', 'fake_tb3', 'world.launch'] + [
             '%s:=%s' % item for item in sorted(sim_args.items())], self.sim_log)
-        if not _wait(self.watch.running, self.deadline):
+        if not self.deadline.wait(self.watch.running):
             raise RuntimeError('the simulator did not start (see %s)' % self.sim_log)
         self.node = StudentNode(session, script)
 
@@ -97,13 +91,13 @@ def check_trajectory(session):
     rate_c = session.rubric.criterion('trajectory_rate')
     circle_c = session.rubric.criterion('trajectory_circle')
     linear, angular = rate_c['linear'], rate_c['angular']
-    run = Run(session, rate_c['script'], picture='trajectory.png', world='empty',
-              x_pos=0.0, y_pos=0.0, noise_stddev=0.0, real_time_factor=rate_c['real_time_factor'])
+    run = Run(session, rate_c['script'], picture='trajectory.png', world=rate_c['world'], x_pos=rate_c['x_pos'],
+              y_pos=rate_c['y_pos'], noise_stddev=rate_c['noise_stddev'], real_time_factor=rate_c['real_time_factor'])
     try:
         watch = run.watch
         expected_rate = '%s: Twist linear.x %g m/s, angular.z %g rad/s on cmd_vel at %g Hz' % (
             run.node.name, linear, angular, rate_c['rate_hz'])
-        if not _wait(lambda: watch.copy('commands'), run.deadline, run.node):
+        if not run.deadline.wait(lambda: watch.copy('commands'), gave_up=run.node.ended):
             run.stop()
             failure = run.not_running(expected_rate)
             return run.judged({'trajectory_rate': failure,
@@ -111,7 +105,7 @@ def check_trajectory(session):
         start = watch.now()
         period = 2 * math.pi / abs(angular) if angular else 10.0
         watched = circle_c['periods'] * period + 2
-        _wait(lambda: watch.now() >= start + watched, run.deadline)
+        run.deadline.wait(lambda: watch.now() >= start + watched)
         seen_for = watch.now() - start
         poses = watch.poses_since(start)
         commands = [(t, lin, ang) for t, lin, ang in watch.copy('commands') if t is not None and t >= start]
@@ -119,32 +113,17 @@ def check_trajectory(session):
         hints = run.node.explain()
         outcomes = {}
         # Rate and values of the commands, in simulated time.
-        tolerance = rate_c['speed_tolerance']
-        rate = rates.kept_rate([t for t, _, _ in commands]) if len(commands) >= 2 else 0.0
-        wrong = [(lin, ang) for _, lin, ang in commands
-                 if abs(lin - linear) > tolerance or abs(ang - angular) > tolerance]
-        rate_ok = abs(rate - rate_c['rate_hz']) <= rate_c['rate_tolerance']
-        seen = '%d messages in %.1f simulated seconds, %.2f Hz' % (len(commands), seen_for, rate)
-        if wrong:
-            seen += ', among them linear.x %g, angular.z %g' % wrong[0]
-        outcomes['trajectory_rate'] = Verdict(rate_ok and not wrong and len(commands) >= 2,
-                                              'expected %s; seen %s' % (expected_rate, seen), hints)
+        kept = driving.commands_kept(commands, seen_for, linear, angular, rate_c['speed_tolerance'],
+                                     rate_c['rate_hz'], rate_c['rate_tolerance'])
+        outcomes['trajectory_rate'] = Verdict(kept.passed, 'expected %s; seen %s' % (expected_rate, kept.reason), hints)
         # The circle of those commands, from the spawn pose.
         expected_radius = abs(linear / angular) if angular else float('inf')
-        expected_circle = 'a circle of radius %.2f m through the spawn pose (0, 0)' % expected_radius
-        length = travelled(poses)
-        if length < 0.1:
-            outcomes['trajectory_circle'] = Verdict(False, 'expected %s; seen: the robot moved %.2f m in '
-                                                    '%.0f simulated seconds' % (expected_circle, length, seen_for), hints)
-        else:
-            cx, cy, radius = figures.fit_circle([(x, y) for _, x, y, _ in poses])
-            off = max(abs(math.hypot(x - cx, y - cy) - expected_radius) for _, x, y, _ in poses)
-            through_spawn = abs(math.hypot(cx, cy) - expected_radius)
-            limit = circle_c['radius_tolerance'] * expected_radius
-            ok = abs(radius - expected_radius) <= limit and off <= limit and through_spawn <= limit
-            outcomes['trajectory_circle'] = Verdict(
-                ok, 'expected %s (within %.2f m); seen a circle of radius %.3f m centred at (%.2f, %.2f), '
-                'positions up to %.3f m off it' % (expected_circle, limit, radius, cx, cy, off), hints)
+        spawn = (rate_c['x_pos'], rate_c['y_pos'])
+        expected_circle = 'a circle of radius %.2f m through the spawn pose (%g, %g)' % ((expected_radius,) + spawn)
+        driven = driving.circle_through(poses, expected_radius, spawn, circle_c['radius_tolerance'],
+                                        circle_c['min_travel'])
+        outcomes['trajectory_circle'] = Verdict(driven.passed, 'expected %s (within %.2f m); seen %s' % (
+            expected_circle, circle_c['radius_tolerance'] * expected_radius, driven.reason), hints)
         return run.judged(outcomes)
     finally:
         run.stop()
@@ -160,8 +139,8 @@ def check_laser_data(session):
     try:
         expected = ('%s prints, for every scan, ========== and the labels s1 [0] ... s5 [359] each '
                     'followed by the range of that beam (%s)' % (run.node.name, ', '.join(map(str, beams))))
-        _wait(lambda: len(laser.printed_blocks(laser.normalized(run.node.lines))) >= needed,
-              run.deadline, run.node)
+        run.deadline.wait(lambda: len(laser.printed_blocks(laser.normalized(run.node.lines))) >= needed,
+                          gave_up=run.node.ended)
         blocks = laser.printed_blocks(laser.normalized(run.node.lines))
         scans = run.watch.copy('scans')
         run.stop()
@@ -171,15 +150,9 @@ def check_laser_data(session):
                 hints = ['%d lines printed, none in the form of the slide (first: %r)' % (
                     len(run.node.lines), run.node.lines[0] if run.node.lines else '')]
             return run.judged({'laser_data': Verdict(False, 'expected %s; seen: %s' % (expected, hints[0]), hints[1:])})
-        # Every block but the first and the newest: their scan certainly reached the grader too.
-        checked = blocks[1:-1] or blocks
-        unmatched = laser.unmatched_blocks(checked, scans, beams)
-        ok = len(blocks) >= needed and not unmatched
-        seen = '%d scans printed, %d of %d checked match a published scan' % (
-            len(blocks), len(checked) - len(unmatched), len(checked))
-        if unmatched:
-            seen += ' (one printed %s)' % ', '.join(unmatched[0])
-        return run.judged({'laser_data': Verdict(ok, 'expected %s; seen %s' % (expected, seen), hints)})
+        printed = laser.printed_scans(blocks, scans, beams, needed)
+        return run.judged({'laser_data': Verdict(printed.passed, 'expected %s; seen %s' % (expected, printed.reason),
+                                                 hints)})
     finally:
         run.stop()
 
@@ -201,12 +174,7 @@ def check_avoid_obstacle(session):
         def moved():
             return largest_move([spawn] + watch.copy('poses'))
 
-        def stopped_for(seconds):
-            poses = watch.copy('poses')
-            recent = [p for p in poses if p[0] >= poses[-1][0] - seconds]
-            return recent[0][0] <= poses[-1][0] - seconds + 0.1 and largest_move(recent) < 1e-4
-
-        drove = _wait(lambda: moved() >= stops_c['min_drive'], run.deadline, run.node)
+        drove = run.deadline.wait(lambda: moved() >= stops_c['min_drive'], gave_up=run.node.ended)
         if not drove:
             distance = moved()
             run.stop()
@@ -214,7 +182,7 @@ def check_avoid_obstacle(session):
                 False, 'expected %s; seen: the robot moved %.2f m' % (expected, distance), run.node.explain())
             return run.judged({'avoid_stops': failure,
                     'avoid_stays': Verdict(False, 'not checked: the robot did not drive')})
-        stopped = _wait(lambda: stopped_for(1.0), run.deadline)
+        stopped = run.deadline.wait(lambda: driving.stopped_for(watch.copy('poses'), stops_c['stopped_seconds']))
         first_stop = watch.copy('poses')[-1]
         if not stopped:
             run.stop()
@@ -224,22 +192,17 @@ def check_avoid_obstacle(session):
                                                expected, moved(), watch.front_range(), watch.collisions or 0), hints),
                     'avoid_stays': Verdict(False, 'not checked: the robot did not stop')})
         stay = stays_c['stay_seconds']
-        _wait(lambda: watch.now() >= first_stop[0] + stay, run.deadline)
+        run.deadline.wait(lambda: watch.now() >= first_stop[0] + stay)
         after = watch.poses_since(first_stop[0])
-        fronts = sorted(scan.ranges[0] for scan in watch.copy('scans')[-max(3, int(stay * 5)):])
-        front = fronts[len(fronts) // 2]
-        creep = largest_move(after)
-        watched = after[-1][0] - first_stop[0]
-        collisions = watch.collisions or 0
+        front = driving.front_at_stop(watch.copy('scans'), stay, low, high)
+        stayed = driving.stayed(after, watch.collisions or 0, stays_c['max_creep'], stay)
         run.stop()
         hints = run.node.explain()
-        outcomes = {'avoid_stops': Verdict(
-            low <= front <= high, 'expected %s; seen: it drove %.2f m and stopped with the front beam at '
-            '%.3f m (median over the stop)' % (expected, travelled([spawn] + after[:1]), front), hints)}
-        ok = collisions == 0 and creep <= stays_c['max_creep'] and watched >= stay - 0.5
-        outcomes['avoid_stays'] = Verdict(ok, 'expected no collision and at most %.2f m moved in the %g simulated '
-                                          'seconds after the stop; seen %d collisions, %.3f m moved in %.1f s' % (
-                                              stays_c['max_creep'], stay, collisions, creep, watched), hints)
+        outcomes = {'avoid_stops': Verdict(front.passed, 'expected %s; seen: it drove %.2f m and %s' % (
+            expected, travelled([spawn] + after[:1]), front.reason), hints)}
+        outcomes['avoid_stays'] = Verdict(stayed.passed, 'expected no collision and at most %.2f m moved in the %g '
+                                          'simulated seconds after the stop; seen %s' % (
+                                              stays_c['max_creep'], stay, stayed.reason), hints)
         return run.judged(outcomes)
     finally:
         run.stop()

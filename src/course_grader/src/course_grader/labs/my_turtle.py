@@ -1,5 +1,5 @@
 """The turtlesim lab (seed 000): my_turtle's move_turtle.launch, the teleop relay and the pose
-printout, on the course's turtlesim, with the helpers of my_turtle's own tests (my_turtle_testing)."""
+printout, on the course's turtlesim, with the checks of course_checks that my_turtle's own tests use."""
 import re
 import threading
 import time
@@ -70,35 +70,28 @@ def check_turtle(session):
                 time.sleep(0.1)
         sender = threading.Thread(target=hold, daemon=True)
         sender.start()
-        wait_for(lambda: turtle.travelled(watch.entries()[-10:]) > 0.01, min(10, deadline.left()))
+        deadline.wait(lambda: turtle.moving(watch), 10)
         samples = watch.record(teleop_c['seconds'])
         holding.clear()
         sender.join()
         teleop.publish(Twist())
-        speed = turtle.travelled(samples) / turtle.duration(samples)
-        rate = turtle.turned(samples) / turtle.duration(samples)
-        tolerance = teleop_c['tolerance']
-        ok = (abs(speed - command.linear.x) <= tolerance * abs(command.linear.x)
-              and abs(rate - command.angular.z) <= tolerance * abs(command.angular.z))
-        outcomes['teleop'] = Verdict(ok, 'expected the turtle at %.2f m/s turning %.2f rad/s while that Twist comes '
-                                     'on cmd_vel_mux/input/teleop; seen %.2f m/s turning %.2f rad/s' % (
-                                         command.linear.x, command.angular.z, speed, rate))
+        followed = turtle.drives_at(samples, command.linear.x, command.angular.z, teleop_c['tolerance'])
+        outcomes['teleop'] = Verdict(followed.passed, 'expected the turtle at %.2f m/s turning %.2f rad/s while that '
+                                     'Twist comes on cmd_vel_mux/input/teleop; seen %s' % (
+                                         command.linear.x, command.angular.z, followed.reason))
         # The printout: after the turtle stopped, the last pose printed is the pose turtlesim publishes.
-        wait_for(lambda: turtle.travelled(watch.record(0.3)) < 1e-3, min(10, deadline.left()))
+        deadline.wait(lambda: turtle.standing(watch), 10)
         final = watch.latest()
         node_run = runs[-1]
 
         def printed():
             found = [PRINTED_POSE.search(line) for line in node_run.lines[-20:]]
-            return [(float(m.group(1)), float(m.group(2))) for m in found if m]
-        tolerance = pose_c['tolerance']
-        matched = wait_for(lambda: any(abs(x - final.x) <= tolerance and abs(y - final.y) <= tolerance
-                                    for x, y in printed()), 5)
-        last = printed()[-1:] or None
-        outcomes['prints_pose'] = Verdict(matched, 'expected lines `x: %.2f, y: %.2f` (the pose turtlesim '
-                                          'publishes, printed on every pose); seen %s' % (
-                                              final.x, final.y, 'last printed x: %.2f, y: %.2f' % last[0] if last
-                                              else 'no line `x: ..., y: ...` printed'))
+            return turtle.printed_position([(float(m.group(1)), float(m.group(2))) for m in found if m], final,
+                                           pose_c['tolerance'])
+        wait_for(lambda: printed().passed, 5)
+        shown = printed()
+        outcomes['prints_pose'] = Verdict(shown.passed, 'expected lines `x: %.2f, y: %.2f` (the pose turtlesim '
+                                          'publishes, printed on every pose); seen %s' % (final.x, final.y, shown.reason))
         impostors = {topic: nodes for topic, nodes in (('turtle1/pose', sorted(senders(watch) - {SIMULATOR})),)
                      if nodes}
         if impostors:

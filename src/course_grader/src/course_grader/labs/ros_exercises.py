@@ -1,6 +1,5 @@
 """The lab report's exercises (seed 002): ros_exercises' launch files exercise1..5 on the course's
 turtlesim, with the checks of course_checks that ros_exercises' own tests use."""
-import math
 import re
 import time
 
@@ -11,7 +10,7 @@ from std_msgs.msg import Int32
 from course_checks import figures, rates, turtle
 from course_checks.robot import senders
 from course_checks.verdict import Verdict
-from course_checks.waiting import Deadline, wait_for
+from course_checks.waiting import Deadline
 from course_grader.labs.common import faked, run_each
 from course_testing.recording import TopicRecorder
 
@@ -19,11 +18,11 @@ NUMBER = r'(-?\d+\.\d+)'
 SIMULATOR = '/turtlesim'
 CRITERIA = {
     'builds': (),
-    'publisher_rate': ('launch_file', 'rate', 'id_number', 'messages', 'tolerance'),
-    'subscriber_prints': (),
+    'publisher_rate': ('launch_file', 'rate', 'id_number', 'skipped', 'messages', 'tolerance'),
+    'subscriber_prints': ('repeats',),
     'listener_prints_pose': ('launch_file', 'linear', 'angular', 'until_x'),
-    'circle': ('launch_file', 'start', 'radius', 'tolerance'),
-    'spawn_kill': ('launch_file', 'spawn'),
+    'circle': ('launch_file', 'start', 'radius', 'tolerance', 'turn_seconds'),
+    'spawn_kill': ('launch_file', 'spawn', 'tolerance'),
     'clear': (),
     'square': ('launch_file', 'spawn', 'side', 'speed', 'turn_speed', 'tolerance'),
     'triangle': ('launch_file', 'spawn', 'side', 'speed', 'turn_speed', 'tolerance'),
@@ -60,8 +59,7 @@ class Exercise:
 
     def wait(self, condition, seconds=None):
         """condition() within `seconds` (the run's time left at most); False as soon as the launch ended."""
-        limit = self.deadline.left() if seconds is None else min(seconds, self.deadline.left())
-        return wait_for(condition, limit, gave_up=self.run.ended)
+        return self.deadline.wait(condition, seconds, gave_up=self.run.ended)
 
     def printed(self, pattern):
         return _printed(self.run, pattern)
@@ -77,8 +75,8 @@ class Exercise:
 
 def check_publisher_subscriber(session):
     rate_c = session.rubric.criterion('publisher_rate')
-    id_number, rate = str(rate_c['id_number']), rate_c['rate']
-    count = int(rate_c['messages']) + 10
+    id_number, rate, skipped = str(rate_c['id_number']), rate_c['rate'], int(rate_c['skipped'])
+    count = int(rate_c['messages']) + skipped
     digits = TopicRecorder('/ZabirovaKostyukova', Int32)
     exercise = Exercise(session, rate_c, 'exercise1.log', 'rate:=%g' % rate, 'id:=' + id_number)
     window = 1.5 * count / rate   # seconds from the first digit: a slower publisher is measured over what came
@@ -89,18 +87,18 @@ def check_publisher_subscriber(session):
     outcomes = {}
     try:
         exercise.wait(measured_enough, session.rubric.limits['start_seconds'] + window)
-        if digits.count() < 12:
+        if digits.count() < skipped + 2:   # a rate needs two messages after those left out
             outcomes['publisher_rate'] = Verdict(False, exercise.nothing(
                 'publish the digits of %s on /ZabirovaKostyukova; %d arrived' % (id_number, digits.count())))
         else:
-            measured = rates.rate_of(digits.entries()[10:count])
+            measured = rates.rate_of(digits.entries()[skipped:count])
             in_order = rates.cycles_through([digit.data for digit in digits.messages()], id_number)
             ok = abs(measured - rate) <= rate_c['tolerance'] and in_order.passed
             outcomes['publisher_rate'] = Verdict(ok, 'expected the digits of %s, in order, at %g Hz ± %g; seen '
                                                  '%.2f Hz%s' % (id_number, rate, rate_c['tolerance'], measured,
                                                                 '' if in_order.passed else '; ' + in_order.reason))
         heard_pattern = r'I heard: \[(\d+)\]'
-        wanted = 3 * len(id_number)
+        wanted = session.rubric.criterion('subscriber_prints')['repeats'] * len(id_number)
         exercise.wait(lambda: len(exercise.printed(heard_pattern)) >= wanted, 10)
         heard = [int(digit) for (digit,) in exercise.printed(heard_pattern)]
         if len(heard) < wanted:
@@ -162,11 +160,11 @@ def check_circle(session):
             return {'circle': Verdict(False, exercise.nothing('drive turtle1'))}
         # turtle1 starts at the middle facing +x: the centre is `radius` to its left.
         centre = (criterion['start'][0], criterion['start'][1] + radius)
-        full_turn = turtle.full_turn(radius)
-        exercise.wait(lambda: len(turtle.moving_points(turtle.pose_array(poses))) >= full_turn, 30)
+        full_turn, seconds = turtle.full_turn(radius), criterion['turn_seconds']
+        exercise.wait(lambda: len(turtle.moving_points(turtle.pose_array(poses))) >= full_turn, seconds)
         points = turtle.moving_points(turtle.pose_array(poses))
         if len(points) < full_turn:
-            wrong, seen = '%d moving poses in 30 s, fewer than a full turn (%d)' % (len(points), full_turn), None
+            wrong, seen = '%d moving poses in %g s, fewer than a full turn (%d)' % (len(points), seconds, full_turn), None
         else:
             drawn = turtle.circle(points, centre, radius, criterion['tolerance'])
             wrong, seen = (None if drawn.passed else drawn.reason), None
@@ -198,12 +196,11 @@ def check_spawn_kill(session):
         if not exercise.wait(lambda: poses.count(), session.rubric.limits['start_seconds']):
             spawned = Verdict(False, exercise.nothing('spawn the turtle robotics'))
         else:
-            pose = poses.latest()
+            at_start = turtle.at_pose(poses.latest(), spawn, criterion['tolerance'])
             gone = exercise.wait(lambda: 'turtle1' not in _turtles(), 5)
-            at_start = max(abs(a - b) for a, b in zip((pose.x, pose.y, pose.theta), spawn)) <= 1e-5
-            spawned = Verdict(at_start and gone, 'expected robotics at (%.2f, %.2f, %.2f) and turtle1 killed; seen '
-                              'robotics at (%.2f, %.2f, %.2f), turtle1 %s' % (
-                                  spawn + (pose.x, pose.y, pose.theta, 'killed' if gone else 'still there')))
+            spawned = Verdict(at_start.passed and gone, 'expected robotics at (%.2f, %.2f, %.2f) and turtle1 killed; '
+                              'seen robotics %s, turtle1 %s' % (spawn + (at_start.reason, 'killed' if gone else
+                                                                         'still there')))
         cleared = exercise.wait(lambda: exercise.printed(r'(Clearing turtlesim\.)\s*$'), 5)
         return {'spawn_kill': _on_interface(poses, 'robotics') or spawned,
                 'clear': Verdict(cleared, 'expected `%s` to clear the background with /clear; seen %s' % (
@@ -228,14 +225,10 @@ def check_shape(session, shape):
         path = turtle.pose_array(poses)
         if not len(path):
             return {shape: Verdict(False, exercise.nothing('spawn robotics and drive a %s' % shape))}
-        away = figures.distances_to_polygon(path[:, :2], outline).max()
-        end = path[-1]
-        missed = math.hypot(end[0] - start[0], end[1] - start[1])
-        ok = finished and away <= tolerance and missed <= tolerance
-        verdict = Verdict(ok, 'expected a %s of side %g m from (%g, %g) back to its start, within %g m; seen '
-                          'the path at most %.3f m off the outline, ending %.3f m from the start%s' % (
-                              shape, side, start[0], start[1], tolerance, away, missed,
-                              '' if finished else ', and no line `Finished the %s`' % shape))
+        closed = figures.closed_path(path[:, :2], outline, tolerance)
+        verdict = Verdict(finished and closed.passed, 'expected a %s of side %g m from (%g, %g) back to its start, '
+                          'within %g m; seen %s%s' % (shape, side, start[0], start[1], tolerance, closed.reason,
+                                                      '' if finished else ', and no line `Finished the %s`' % shape))
         return {shape: _on_interface(poses, 'robotics') or verdict}
     finally:
         exercise.stop()
