@@ -219,6 +219,7 @@
     if (part.trail_reset) tb.trail = [];
     const from = tb.trail.length;
     for (const point of part.trail) tb.trail.push(point);
+    stats.tb3TrailLength = tb.trail.length;
     if (part.scan) { tb.scan = part.scan; stats.scans++; }
     if (part.pose) {
       tb.pose = part.pose;
@@ -232,6 +233,7 @@
     else if (tb.trail.length > from) drawTrail(from);
     drawTb3();
     if (part.pose && !(lastRecorded && part.pose.every((v, i) => v === lastRecorded[i]))) {
+      stats.tb3Poses++;
       recordDrawn('tb3', part.pose[0]);  // a new pose, not a scan beside the same pose
       lastRecorded = part.pose;
     }
