@@ -25,6 +25,7 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import String
 import tornado.ioloop
 
+from course_common.sim_clock import stop_hearing_clock
 from course_web.frames import Scenes
 from course_web.protocol import TURTLESIM_KEYS
 from course_web.server import ViewServer
@@ -247,6 +248,8 @@ class RosView:
 
 def main():
     rospy.init_node('course_web', disable_signals=True)  # Ctrl-C is the web loop's to handle
+    if stop_hearing_clock():  # beside a simulator on simulated time: the view needs no ROS time
+        rospy.rostime.switch_to_wallclock()
     port = rospy.get_param('~port', 8080)
     host = str(rospy.get_param('~host', '127.0.0.1'))
     allowed = rospy.get_param('~allowed_hosts', '')
