@@ -12,7 +12,8 @@
                           ['#5a641e', '#aab43c'], ['#463c6e', '#8c78b4'], ['#823228', '#d26e50']];
 
   // What tests and the benchmark read: frames received and, per drawn pose, when it was drawn.
-  const stats = {frames: 0, turtlesimFrames: 0, tb3Frames: 0, scans: 0, drawn: [], tb3ToPixel: null};
+  const stats = {frames: 0, turtlesimFrames: 0, tb3Frames: 0, tb3Poses: 0, scans: 0, drawn: [], tb3ToPixel: null,
+                 tb3TrailLength: 0};
   window.courseWeb = stats;
   const clock = () => performance.timeOrigin + performance.now();
   function recordDrawn(what, x) {
@@ -51,7 +52,7 @@
   }
 
   // ---------------------------------------------------------------- turtlesim
-  const ts = {ctx: $('turtlesim-canvas').getContext('2d'), path: null, turtles: []};
+  const ts = {ctx: $('turtlesim-canvas').getContext('2d'), path: null, turtles: new Map()};
 
   function fillPath(r, g, b) {
     const data = ts.path.data;
@@ -109,12 +110,12 @@
   function drawTurtlesim() {
     const ctx = ts.ctx;
     ctx.putImageData(ts.path, 0, 0);
-    for (const turtle of ts.turtles) drawTurtle(ctx, turtle);
+    for (const turtle of ts.turtles.values()) drawTurtle(ctx, turtle);
   }
 
   async function turtlesimPart(part) {
     $('turtlesim').hidden = !part.present;
-    if (!part.present) { ts.path = null; ts.turtles = []; return; }
+    if (!part.present) { ts.path = null; ts.turtles.clear(); return; }
     if (part.canvas) {
       const image = new Image();
       image.src = part.canvas;
@@ -130,9 +131,12 @@
       if (op[0] === 'fill') fillPath(op[1], op[2], op[3]);
       else drawPathLine(op[1], op[2], op[3], op[4], op[5], op[6], op[7], op[8]);
     }
-    ts.turtles = part.turtles;
+    // All the turtles, or those that changed and the names of those killed since the last frame.
+    if (part.all) ts.turtles.clear();
+    for (const name of part.gone || []) ts.turtles.delete(name);
+    for (const turtle of part.turtles) ts.turtles.set(turtle[0], turtle);
     drawTurtlesim();
-    const first = ts.turtles.find((t) => t[0] === 'turtle1');
+    const first = ts.turtles.get('turtle1');
     if (first) recordDrawn('turtle1', first[1]);
   }
 
@@ -215,6 +219,7 @@
     if (part.trail_reset) tb.trail = [];
     const from = tb.trail.length;
     for (const point of part.trail) tb.trail.push(point);
+    stats.tb3TrailLength = tb.trail.length;
     if (part.scan) { tb.scan = part.scan; stats.scans++; }
     if (part.pose) {
       tb.pose = part.pose;
@@ -228,6 +233,7 @@
     else if (tb.trail.length > from) drawTrail(from);
     drawTb3();
     if (part.pose && !(lastRecorded && part.pose.every((v, i) => v === lastRecorded[i]))) {
+      stats.tb3Poses++;
       recordDrawn('tb3', part.pose[0]);  // a new pose, not a scan beside the same pose
       lastRecorded = part.pose;
     }

@@ -55,8 +55,11 @@ class Scenes:
                     _, png = ts.png()
                     part['canvas'] = 'data:image/png;base64,' + base64.b64encode(png).decode('ascii')
                     ops = []
-                part.update(ops=[op_for_page(op) for op in ops], turtles=ts.turtles, seq=ts.seq,
-                            stamp=ts.stamp)
+                part.update(ops=[op_for_page(op) for op in ops], seq=ts.seq, stamp=ts.stamp)
+                if ts.generation == ts_generation and ts.version == ts_version + 1:
+                    part.update(turtles=ts.changed, gone=ts.gone)  # the page has the rest
+                else:
+                    part.update(turtles=list(ts.turtles.values()), all=True)
             frame['turtlesim'] = part
         tb = self.tb3
         if (tb.generation, tb.version) != (tb_generation, tb_version):

@@ -1,9 +1,13 @@
 """course_web's ROS layer: turns turtlesim's ~scene, fake_tb3's odom and scan into the scenes the
 page draws, and the page's keys into the teleops' commands. Nothing else reaches ROS from a page.
 
-Threads: rospy's callbacks change the scenes (under their lock) and wake the web server; the web
-server (tornado) runs in the main thread; a presence thread asks the master twice a second which
-simulators run, so the page follows one that stops or restarts.
+It listens to the simulators only while a page is connected (and a few seconds after the last one
+left), so a view nobody watches costs them nothing. Threads: rospy's callbacks change the scenes
+(under their lock) and wake the web server, which sends one frame per turtlesim tick (the
+TurtleBot3's updates ride along, or go within 16 ms); the web server (tornado) runs in the main
+thread; a watch thread, while pages are connected, sees from the subscriptions' connections whether
+a simulator is still there and asks the master every few seconds which node is turtlesim (whatever
+its name: the node that publishes its own ~scene) and whether fake_tb3 runs.
 """
 import asyncio
 import json
@@ -11,7 +15,7 @@ import math
 import signal
 import sys
 import threading
-import xmlrpc.client
+import time
 
 import rosgraph
 import rospy
@@ -21,6 +25,7 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import String
 import tornado.ioloop
 
+from course_common.sim_clock import stop_hearing_clock
 from course_web.frames import Scenes
 from course_web.protocol import TURTLESIM_KEYS
 from course_web.server import ViewServer
@@ -29,15 +34,12 @@ from fake_tb3.models import UnknownModelError
 from fake_tb3.world import WorldError, load_world
 from turtlebot3_teleop.key_commands import KeyCommands, speed_limits
 
-PRESENCE_PERIOD = 0.5  # s between looks at which simulators run
+CONNECTION_PERIOD = 0.5  # s between looks at the subscriptions' connections
+MASTER_PERIOD = 2.0  # s between questions to the master
+IDLE_SECONDS = 3.0  # s after the last page left before the simulators are let go
+TB3_FRAME_WITHIN = 0.016  # s: a TurtleBot3 update waits at most this for turtlesim's next tick
 TB3_PUBLISH_PERIOD = 0.1  # s, as turtlebot3_teleop_key
-
-
-class _QuickTransport(xmlrpc.client.Transport):
-    def make_connection(self, host):
-        connection = super().make_connection(host)
-        connection.timeout = 2.0
-        return connection
+RELAY_TOPIC = 'cmd_vel_mux/input/teleop'  # the 000 lab's relay listens here, as turtlebot_teleop publishes
 
 
 def _refuse_constant(name):
@@ -50,40 +52,122 @@ def _twist(linear, angular):
     return command
 
 
+def turtlesim_nodes(publishers):
+    """The nodes that publish their own ~scene (turtlesim's way), from the master's
+    [[topic, [node, ...]], ...]."""
+    return sorted(node for topic, nodes in publishers for node in nodes if topic == node + '/scene')
+
+
 class RosView:
     def __init__(self, allowed_hosts):
         self.scenes = Scenes()
-        self.server = ViewServer(self.scenes, self.on_key, rospy.logwarn, allowed_hosts)
-        self.turtlesim_node = rospy.resolve_name(rospy.get_param('~turtlesim', '/turtlesim'))
+        self.server = ViewServer(self.scenes, self.on_key, rospy.logwarn, allowed_hosts, self.on_pages)
         self.fake_tb3_node = rospy.resolve_name(rospy.get_param('~fake_tb3', '/fake_tb3'))
         # The teleops' topics and numbers: turtle_teleop_key and turtlebot3_teleop_key.
         self.scale_linear = float(rospy.get_param('scale_linear', 2.0))
         self.scale_angular = float(rospy.get_param('scale_angular', 2.0))
         self.turtle_commands = rospy.Publisher('turtle1/cmd_vel', Twist, queue_size=1)
+        self.relay_commands = rospy.Publisher(RELAY_TOPIC, Twist, queue_size=1)
         self.tb3_commands = rospy.Publisher('cmd_vel', Twist, queue_size=1)
         self.tb3_keys = None  # KeyCommands, made at the first key with the running model's limits
         self.tb3_model = None
         self.tb3_lock = threading.Lock()
         self.tb3_driving = False
-        self.scene_subscriber = None
+        self.page_count = 0
+        self.pages_changed = threading.Event()
         self.resubscribe = threading.Event()
-        self._subscribe_scene()
-        rospy.Subscriber('odom', Odometry, self.on_odom, queue_size=1)
-        rospy.Subscriber('scan', LaserScan, self.on_scan, queue_size=1)
+        self.subscribers = None  # {'scene', 'odom', 'scan'} while listening
+        self.turtlesim_node = None
+        self.turtlesim_shown = False
+        self.fake_tb3_listed = False
+        self.fake_tb3_shown = False
         self.master = rosgraph.Master(rospy.get_name())
-        self._threads = [threading.Thread(target=self._watch_simulators, daemon=True),
+        self._threads = [threading.Thread(target=self._watch, daemon=True),
                          threading.Thread(target=self._drive_tb3, daemon=True)]
 
     def start(self):
         for thread in self._threads:
             thread.start()
 
+    def on_pages(self, count):
+        """In the web thread: `count` pages are connected now."""
+        self.page_count = count
+        self.pages_changed.set()
+
     # --- simulators -> scenes ---
+    def _watch(self):
+        next_master_look, idle_since = 0.0, None
+        while not rospy.is_shutdown():
+            now = time.monotonic()
+            if self.page_count:
+                idle_since = None
+                if self.subscribers is None:
+                    self._listen()
+                    next_master_look = 0.0
+                if now >= next_master_look:
+                    self._look_at_master()
+                    next_master_look = now + MASTER_PERIOD
+                self._look_at_connections()
+            elif self.subscribers is not None:
+                idle_since = idle_since or now
+                if now - idle_since >= IDLE_SECONDS:
+                    self._let_go()
+            self.pages_changed.wait(CONNECTION_PERIOD if self.subscribers is not None else 1.0)
+            self.pages_changed.clear()
+
+    def _listen(self):
+        self.subscribers = {'odom': rospy.Subscriber('odom', Odometry, self.on_odom, queue_size=1),
+                            'scan': rospy.Subscriber('scan', LaserScan, self.on_scan, queue_size=1),
+                            'scene': None}
+        if self.turtlesim_node is not None:
+            self._subscribe_scene()
+
+    def _let_go(self):
+        for subscriber in self.subscribers.values():
+            if subscriber is not None:
+                subscriber.unregister()
+        self.subscribers = None
+        self.turtlesim_shown = self.fake_tb3_shown = False
+        with self.scenes.lock:
+            self.scenes.turtlesim.vanish()
+            self.scenes.tb3.vanish()
+
     def _subscribe_scene(self):
-        if self.scene_subscriber is not None:
-            self.scene_subscriber.unregister()
-        self.scene_subscriber = rospy.Subscriber(self.turtlesim_node + '/scene', String,
-                                                 self.on_scene, queue_size=100)
+        if self.subscribers['scene'] is not None:
+            self.subscribers['scene'].unregister()
+        self.subscribers['scene'] = rospy.Subscriber(self.turtlesim_node + '/scene', String,
+                                                     self.on_scene, queue_size=100)
+
+    def _look_at_master(self):
+        """Which node is turtlesim, and whether fake_tb3 runs (one question to the master)."""
+        try:
+            publishers = self.master.getSystemState()[0]
+        except Exception:  # no master at the moment: the connections tell what is gone
+            return
+        found = turtlesim_nodes(publishers)
+        if found and self.turtlesim_node not in found:
+            self.turtlesim_node = found[0]
+            self._subscribe_scene()
+        odom = rospy.resolve_name('odom')
+        self.fake_tb3_listed = any(topic == odom and self.fake_tb3_node in nodes for topic, nodes in publishers)
+
+    def _look_at_connections(self):
+        scene = self.subscribers['scene']
+        connected = scene is not None and scene.get_num_connections() > 0
+        if self.resubscribe.is_set() and connected:
+            self.resubscribe.clear()
+            rospy.logwarn('course_web: missed a ~scene message of turtlesim: asking for the whole picture again')
+            self._subscribe_scene()
+            connected = False  # until the new subscription connects
+        elif self.turtlesim_shown and not connected:
+            with self.scenes.lock:
+                self.scenes.turtlesim.vanish()
+            self.server.notify()
+        self.turtlesim_shown = connected
+        running = self.fake_tb3_listed and self.subscribers['odom'].get_num_connections() > 0
+        if running != self.fake_tb3_shown:
+            self.fake_tb3_shown = running
+            self._follow_fake_tb3(running)
 
     def on_scene(self, message):
         try:
@@ -103,47 +187,17 @@ class RosView:
         with self.scenes.lock:
             self.scenes.tb3.on_odom(pose.position.x, pose.position.y, math.atan2(math.sin(yaw), math.cos(yaw)),
                                     twist.linear.x, twist.angular.z)
-        self.server.notify()
+        self.server.notify(TB3_FRAME_WITHIN)
 
     def on_scan(self, message):
         with self.scenes.lock:
             self.scenes.tb3.on_scan(message.ranges, message.angle_min, message.angle_increment,
                                     message.range_min, message.range_max)
-        self.server.notify()
+        self.server.notify(TB3_FRAME_WITHIN)
 
-    def _node_uri(self, name):
-        """The node's URI if it runs: registered with the master and answering there (a node
-        killed without unregistering, as turtlesim by Ctrl-C, stays registered)."""
-        try:
-            uri = self.master.lookupNode(name)
-            xmlrpc.client.ServerProxy(uri, transport=_QuickTransport()).getPid(rospy.get_name())
-            return uri
-        except Exception:  # unknown node, no master at the moment, or a node that is gone
-            return None
-
-    def _watch_simulators(self):
-        turtlesim_uri = fake_tb3_uri = None
-        while not rospy.is_shutdown():
-            uri = self._node_uri(self.turtlesim_node)
-            if uri != turtlesim_uri:
-                turtlesim_uri = uri
-                if uri is None:
-                    with self.scenes.lock:
-                        self.scenes.turtlesim.vanish()
-                    self.server.notify()
-            if self.resubscribe.is_set() and uri is not None:
-                self.resubscribe.clear()
-                rospy.logwarn('course_web: missed a ~scene message of turtlesim: asking for the whole picture again')
-                self._subscribe_scene()
-            uri = self._node_uri(self.fake_tb3_node)
-            if uri != fake_tb3_uri:
-                fake_tb3_uri = uri
-                self._follow_fake_tb3(uri)
-            rospy.rostime.wallsleep(PRESENCE_PERIOD)
-
-    def _follow_fake_tb3(self, uri):
+    def _follow_fake_tb3(self, running):
         world = model = None
-        if uri is not None:
+        if running:
             try:
                 world = load_world(rospy.get_param(self.fake_tb3_node + '/world', 'empty'))
                 model = rospy.get_param(self.fake_tb3_node + '/model', 'burger')
@@ -163,7 +217,10 @@ class RosView:
     def on_key(self, key):
         if key in TURTLESIM_KEYS:
             linear, angular = TURTLESIM_KEYS[key]
-            self.turtle_commands.publish(_twist(self.scale_linear * linear, self.scale_angular * angular))
+            # The 000 lab's relay (my_turtle_node) drives turtle1 from what turtlebot_teleop sends it.
+            relay = self.relay_commands.get_num_connections() > 0
+            (self.relay_commands if relay else self.turtle_commands).publish(
+                _twist(self.scale_linear * linear, self.scale_angular * angular))
             return
         with self.tb3_lock:
             if self.tb3_keys is None:
@@ -191,6 +248,8 @@ class RosView:
 
 def main():
     rospy.init_node('course_web', disable_signals=True)  # Ctrl-C is the web loop's to handle
+    if stop_hearing_clock():  # beside a simulator on simulated time: the view needs no ROS time
+        rospy.rostime.switch_to_wallclock()
     port = rospy.get_param('~port', 8080)
     host = str(rospy.get_param('~host', '127.0.0.1'))
     allowed = rospy.get_param('~allowed_hosts', '')

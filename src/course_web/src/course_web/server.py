@@ -3,7 +3,8 @@
 Every file the page needs is in this package's web/ folder: no CDN, no build step. A page's
 websocket gets frames (frames.Scenes) and sends key presses, which go to `on_key`. Frames are sent
 one at a time: the next is made only when the previous one has been handed to the socket, so a slow
-or stalled page skips states and nothing queues up for it.
+or stalled page skips states and nothing queues up for it. `on_pages` hears how many pages are
+connected, so that the ROS side listens to the simulators only while someone watches.
 """
 import logging
 import os
@@ -65,7 +66,7 @@ class PageSocket(_HostChecked, tornado.websocket.WebSocketHandler):
         connection = self.ws_connection.stream.socket
         connection.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, SEND_BUFFER_BYTES)
         connection.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
-        self.server.pages.add(self)
+        self.server.page_opened(self)
         self.offer()
 
     def on_message(self, message):
@@ -83,7 +84,7 @@ class PageSocket(_HostChecked, tornado.websocket.WebSocketHandler):
         self.close(code, reason[:100])
 
     def on_close(self):
-        self.server.pages.discard(self)
+        self.server.page_closed(self)
         if self.close_code is None and self.closing_reason is None:
             # No closing handshake: the web library dropped it for a message larger than
             # MAX_TRANSPORT_BYTES (it does not say so), or the network went away.
@@ -97,13 +98,16 @@ class PageSocket(_HostChecked, tornado.websocket.WebSocketHandler):
         text, self.cursor = self.server.scenes.frame_for(self.cursor)
         if text is None:
             return
-        self.sending = True
         self.frames_sent += 1
         try:
             future = self.write_message(text)
         except tornado.websocket.WebSocketClosedError:
             return
-        future.add_done_callback(self._sent)
+        # Usually the socket took the whole frame at once: the page can have the next one at the
+        # next change. Otherwise the next frame waits until this one has left.
+        if self.ws_connection is not None and self.ws_connection.stream.writing():
+            self.sending = True
+            future.add_done_callback(self._sent)
 
     def _sent(self, future):
         self.sending = False
@@ -114,13 +118,14 @@ class PageSocket(_HostChecked, tornado.websocket.WebSocketHandler):
 class ViewServer:
     """Serves the page and pushes frames; notify() may be called from any thread."""
 
-    def __init__(self, scenes, on_key, log, allowed_hosts=()):
+    def __init__(self, scenes, on_key, log, allowed_hosts=(), on_pages=None):
         self.scenes = scenes
         self.on_key = on_key
         self.log = log
+        self.on_pages = on_pages or (lambda count: None)
         self.pages = set()
         self.loop = None
-        self._flush_pending = False
+        self._flush_due = None  # monotonic time by which a flush is scheduled, None: none is
         self._flush_lock = threading.Lock()
         self.app = tornado.web.Application([
             (r'/ws', PageSocket, {'server': self}),
@@ -137,17 +142,34 @@ class ViewServer:
         self.http.add_sockets(sockets)
         return sockets[0].getsockname()[1]
 
-    def notify(self):
-        """Something changed: offer every page a frame (soon, in the loop's thread)."""
+    def page_opened(self, page):
+        self.pages.add(page)
+        self.on_pages(len(self.pages))
+
+    def page_closed(self, page):
+        if page in self.pages:
+            self.pages.discard(page)
+            self.on_pages(len(self.pages))
+
+    def notify(self, within=0.0):
+        """Something changed: offer every page a frame, at the latest `within` seconds from now
+        (in the loop's thread). Changes that come meanwhile ride along in the same frame."""
+        due = time.monotonic() + within
         with self._flush_lock:
-            if self._flush_pending or self.loop is None:
+            if self.loop is None or not self.pages or (self._flush_due is not None and self._flush_due <= due):
                 return
-            self._flush_pending = True
-        self.loop.add_callback(self._flush)
+            self._flush_due = due
+        self.loop.add_callback(self._schedule_flush, within)
+
+    def _schedule_flush(self, within):
+        if within > 0:
+            self.loop.call_later(within, self._flush)
+        else:
+            self._flush()
 
     def _flush(self):
         with self._flush_lock:
-            self._flush_pending = False
+            self._flush_due = None
         for page in list(self.pages):
             page.offer()
 

@@ -2,7 +2,9 @@
 
 The path layer (background and pen lines, no turtles) is kept as turtlesim's first message gave it
 plus the drawing operations since, in order; a page that connects gets the layer as a PNG and
-then only the new operations. The layer is drawn with turtlesim's own canvas code, so a PNG sent to
+then only the new operations. Turtles come as turtlesim sends them: all of them with a picture,
+then those that changed and the names of those killed; a page one version behind gets just that,
+any other page the whole list. The layer is drawn with turtlesim's own canvas code, so a PNG sent to
 a new page is the pixels turtlesim has.
 """
 import base64
@@ -97,7 +99,9 @@ class TurtlesimScene:
         self.version = 0
         self.seq = None
         self.stamp = None
-        self.turtles = []
+        self.turtles = {}  # name -> [name, x, y, theta, icon], in the order turtlesim first sent them
+        self.changed = []  # the turtles the last message changed, and the names it removed
+        self.gone = []
         self._canvas = None  # turtlesim.canvas.Canvas with the first _flat ops applied
         self._flat = 0
         self._pending = []  # ops after the first _flat ones, not yet drawn on _canvas
@@ -121,12 +125,21 @@ class TurtlesimScene:
             elif self.seq is None or not self.present or message['seq'] != self.seq + 1:
                 return False
             ops = [parse_op(op) for op in message.get('ops', [])]
-            turtles = check_turtles(message['turtles'])
+            changed = check_turtles(message['turtles'])
+            gone = message.get('gone', [])
+            if not (isinstance(gone, list) and all(type(name) is str for name in gone)):
+                raise SceneError('expected a list of names, got %r' % (gone,))
             seq, stamp = int(_number(message['seq'])), float(_number(message['stamp']))
         except (KeyError, TypeError, ValueError, zlib.error) as error:
             raise SceneError('bad ~scene message: %s' % error) from None
+        if 'canvas' in message:
+            self.turtles = {}
+        for name in gone:
+            self.turtles.pop(name, None)
+        for turtle in changed:
+            self.turtles[turtle[0]] = turtle
         self._pending.extend(ops)
-        self.turtles, self.seq, self.stamp = turtles, seq, stamp
+        self.changed, self.gone, self.seq, self.stamp = changed, gone, seq, stamp
         self.version += 1
         if len(self._pending) > MAX_PENDING_OPS:
             self._flatten()
@@ -135,7 +148,7 @@ class TurtlesimScene:
     def vanish(self):
         """turtlesim is gone: nothing to show until it publishes again."""
         if self.present or self.seq is not None:
-            self.present, self.seq, self.turtles = False, None, []
+            self.present, self.seq, self.turtles = False, None, {}
             self._canvas, self._flat, self._pending, self._png = None, 0, [], None
             self.generation += 1
             self.version += 1

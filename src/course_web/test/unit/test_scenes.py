@@ -40,7 +40,7 @@ def test_lines_and_fills_give_turtlesims_own_pixels():
         original.draw_line(*op[1:5], tuple(op[5:8]), op[8])
     assert scene.apply({'seq': 2, 'stamp': 2.0, 'ops': ops, 'turtles': [['turtle1', 6.0, 5.5, 0.1, 2]]})
     assert np.array_equal(scene.pixels(), original.pixels)
-    assert scene.turtles == [['turtle1', 6.0, 5.5, 0.1, 2]]
+    assert list(scene.turtles.values()) == [['turtle1', 6.0, 5.5, 0.1, 2]]
     original.fill((10, 20, 30))
     assert scene.apply({'seq': 3, 'stamp': 3.0, 'ops': [['fill', 10, 20, 30]], 'turtles': []})
     assert np.array_equal(scene.pixels(), original.pixels)
@@ -63,6 +63,7 @@ def test_a_missed_message_is_noticed_and_the_next_picture_repairs_it():
     {'seq': 2, 'stamp': 0.0, 'ops': [['fill', 300, 0, 0]], 'turtles': []},
     {'seq': 2, 'stamp': 0.0, 'ops': [['line', 'a', 0, 0, 0, 0, 0, 0, 1]], 'turtles': []},
     {'seq': 2, 'stamp': 0.0, 'ops': [], 'turtles': [['turtle1', 1.0]]},
+    {'seq': 2, 'stamp': 0.0, 'ops': [], 'turtles': [], 'gone': [1]},
     {'seq': 2, 'stamp': 0.0, 'ops': []},
 ])
 def test_malformed_scene_messages_are_errors(bad):
@@ -98,6 +99,26 @@ def test_pages_get_everything_once_then_only_what_changed():
     scenes.turtlesim.vanish()
     text, cursor = scenes.frame_for(cursor)
     assert json.loads(text) == {'turtlesim': {'present': False}}
+
+
+def test_a_page_one_frame_behind_gets_only_the_turtles_that_changed():
+    scenes = Scenes()
+    turtles = [('turtle1', 5.5, 5.5, 0.0, 0), ('turtle2', 1.0, 1.0, 0.0, 3), ('turtle3', 2.0, 2.0, 0.0, 1)]
+    scenes.turtlesim.apply(canvas_message(Canvas((0, 0, 0)), 1, turtles))
+    _, cursor = scenes.frame_for(NEW_PAGE)
+    _, behind = scenes.frame_for(NEW_PAGE)
+    scenes.turtlesim.apply({'seq': 2, 'stamp': 0.0, 'ops': [], 'turtles': [['turtle1', 5.6, 5.5, 0.0, 0]]})
+    text, cursor = scenes.frame_for(cursor)
+    part = json.loads(text)['turtlesim']
+    assert part['turtles'] == [['turtle1', 5.6, 5.5, 0.0, 0]] and part['gone'] == [] and 'all' not in part
+    scenes.turtlesim.apply({'seq': 3, 'stamp': 0.0, 'ops': [], 'turtles': [['turtle4', 3.0, 3.0, 1.0, 2]],
+                            'gone': ['turtle2']})
+    part = json.loads(scenes.frame_for(cursor)[0])['turtlesim']
+    assert part['turtles'] == [['turtle4', 3.0, 3.0, 1.0, 2]] and part['gone'] == ['turtle2']
+    # A page two messages behind gets every turtle as they are now.
+    part = json.loads(scenes.frame_for(behind)[0])['turtlesim']
+    assert part['all'] and part['turtles'] == [['turtle1', 5.6, 5.5, 0.0, 0], ['turtle3', 2.0, 2.0, 0.0, 1],
+                                               ['turtle4', 3.0, 3.0, 1.0, 2]]
 
 
 def test_a_page_far_behind_gets_a_new_picture_instead_of_every_line():

@@ -26,7 +26,6 @@ import types
 import rosgraph.names
 import rospkg
 import rospy.core
-import rospy.impl.simtime
 import rospy.rostime
 import rospy
 from geometry_msgs.msg import TransformStamped, Twist
@@ -39,6 +38,7 @@ from tf2_msgs.msg import TFMessage
 
 from course_common import batched_writes
 from course_common.request_queue import RequestQueue
+from course_common.sim_clock import stop_hearing_clock
 from course_common.timing import Pacer, Periodic
 
 from fake_tb3.imu import ImuSensor
@@ -245,7 +245,7 @@ class FakeTb3Node:
         if self.use_sim_time:
             self.clock = rospy.Publisher('/clock', Clock, queue_size=10)
             self.clock_message = prebuilt(Clock(), [('clock.secs', 'I'), ('clock.nsecs', 'I')])
-            _stop_hearing_own_clock()
+            stop_hearing_clock()  # it sets its own rospy time at each tick
         self.interfaces = [RobotInterface(self, robot, robot.name + '/' if robot.name else '')
                            for robot in robots]
         rospy.Service('~save_picture', Trigger, self._on_save_picture)
@@ -353,7 +353,7 @@ class FakeTb3Node:
             # Simulated time starts at 0, as Gazebo's; real time stamps are the wall clock.
             if self.use_sim_time:
                 stamp = rospy.Time(0, next_ns)
-                rospy.rostime._set_rostime(stamp)  # this node's own rospy time: see _stop_hearing_own_clock
+                rospy.rostime._set_rostime(stamp)  # this node's own rospy time: it does not hear its own /clock
             else:
                 stamp = rospy.Time.now()
             with self.lock:
@@ -377,16 +377,6 @@ class FakeTb3Node:
                 print('fake_tb3: picture written to %s' % path)
             except (OSError, ValueError) as err:
                 print('fake_tb3: cannot write the picture %s: %s' % (path, err), file=sys.stderr)
-
-
-def _stop_hearing_own_clock():
-    """rospy subscribes a node on simulated time to /clock to learn the time; this node makes
-    that clock, and sets its rospy time itself at each tick instead of receiving its own 100
-    messages per simulated second."""
-    subscriber = getattr(rospy.impl.simtime, '_clock_sub', None)
-    if subscriber is not None:
-        subscriber.unregister()
-        rospy.impl.simtime._clock_sub = None
 
 
 def main():

@@ -6,9 +6,9 @@ time; nodes on simulated time, rospy's and roscpp's Rate included, follow it).
 import time
 
 import rospy
-import rospy.impl.simtime
 from rosgraph_msgs.msg import Clock
 
+from course_common.sim_clock import stop_hearing_clock
 from course_common.timing import Pacer, Periodic
 from turtlesim.world import TICK_SECONDS
 
@@ -49,10 +49,7 @@ class SimulatedTicks:
         self.clock = Periodic(clock_rate, 'clock_rate')
         self.clock_pub = rospy.Publisher('/clock', Clock, queue_size=100)
         self.next_tick_ns = 0
-        subscriber = getattr(rospy.impl.simtime, '_clock_sub', None)
-        if subscriber is not None:
-            subscriber.unregister()
-            rospy.impl.simtime._clock_sub = None
+        stop_hearing_clock()
         self._set(0)
 
     def _set(self, sim_ns):

@@ -1,0 +1,16 @@
+"""/clock for nodes on simulated time that make their own clock or need none."""
+import rospy
+import rospy.impl.simtime
+
+
+def stop_hearing_clock():
+    """rospy subscribes every node on simulated time (/use_sim_time) to /clock, 100 messages a
+    simulated second or more. A node that makes the clock itself, or needs no ROS time, drops that
+    subscription here (and then sets its rospy time itself, or switches to the wall clock).
+    Returns whether there was one."""
+    subscriber = getattr(rospy.impl.simtime, '_clock_sub', None)
+    if subscriber is None:
+        return False
+    subscriber.unregister()
+    rospy.impl.simtime._clock_sub = None
+    return True

@@ -1,0 +1,76 @@
+"""What the browser tests share: the view started on a free port and headless chromium on its page
+(for a unittest.TestCase's class), and how to read what the page shows."""
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+import rospy
+from selenium.webdriver.common.by import By
+
+from course_testing.browser import element_pixels, start_browser
+from course_testing.processes import free_port, port_open, stop_process_group
+from course_testing.waiting import wait_until
+
+TS_PX_PER_METER = 45
+TS_BACKGROUND = (69, 86, 255)
+
+
+def ts_pixel(x, y):
+    """turtlesim's canvas pixel (column, row) of a point in metres."""
+    return int(round(x * TS_PX_PER_METER)), int(round(499 - y * TS_PX_PER_METER))
+
+
+def near_colour(pixels, col, row, colour, radius=2, tolerance=40):
+    patch = pixels[max(0, row - radius):row + radius + 1, max(0, col - radius):col + radius + 1]
+    return bool((np.abs(patch.astype(int) - colour).sum(axis=2) <= tolerance).any())
+
+
+class ViewInBrowser(unittest.TestCase):
+    """The view (node /course_web) and one browser tab on it; screenshots go to the directory in
+    $COURSE_WEB_SCREENSHOTS, else to a temporary one (logged)."""
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('course_web_browser_test')
+        cls.shots = os.environ.get('COURSE_WEB_SCREENSHOTS') or tempfile.mkdtemp(prefix='course_web-')
+        os.makedirs(cls.shots, exist_ok=True)
+        rospy.loginfo('course_web test: screenshots in %s', cls.shots)
+        cls.port = free_port()
+        cls.view = subprocess.Popen(['rosrun', 'course_web', 'view', '__name:=course_web',
+                                     '_port:=%d' % cls.port], start_new_session=True)
+        wait_until(lambda: port_open(cls.port), 60, 'the view to listen on port %d' % cls.port, poll=0.2)
+        cls.browser = start_browser()
+        cls.browser.get('http://localhost:%d/' % cls.port)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.browser.quit()
+        stop_process_group(cls.view)
+
+    def script(self, text):
+        return self.browser.execute_script(text)
+
+    def canvas(self, name):
+        return element_pixels(self.browser.find_element(By.ID, name + '-canvas'))
+
+    def text(self, element_id):
+        return self.script('return document.getElementById(%r).textContent' % element_id)
+
+    def press(self, *keys):
+        body = self.browser.find_element(By.TAG_NAME, 'body')
+        for key in keys:
+            body.send_keys(key)
+
+    def wait_shown(self, part, shown=True):
+        """Wait until the page shows (or hides) its part: 'turtlesim' or 'tb3'."""
+        wait_until(lambda: self.script('return document.getElementById(%r).hidden' % part) != shown, 30,
+                   'the page to %s %s' % ('show' if shown else 'hide', part))
+
+    def wait_page_shows_turtle_at(self, pose):
+        def shown():
+            drawn = self.script('const d = window.courseWeb.drawn.filter(e => e[0] === "turtle1"); '
+                                'return d.length ? d[d.length - 1][1] : null')
+            return drawn is not None and abs(drawn - pose.x) < 1e-4
+        wait_until(shown, 20, 'the page to draw turtle1 at x = %.4f' % pose.x, poll=0.05)
