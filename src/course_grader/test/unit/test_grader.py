@@ -4,6 +4,7 @@ import io
 import os
 import subprocess
 import tarfile
+import time
 
 import pytest
 
@@ -58,6 +59,21 @@ def test_what_escaped_a_session_to_init_is_stopped_by_its_mark(tmp_path):
     finally:
         assert grader.stop_marked(mark) == 4
     assert grader.marked_processes(mark) == []
+
+
+def test_the_processes_of_a_user_are_found_but_not_the_dead_ones():
+    sleeper = subprocess.Popen(['sleep', '600'])
+    try:
+        assert sleeper.pid in grader.user_processes(os.getuid())
+        assert sleeper.pid not in grader.user_processes(os.getuid() + 1)
+    finally:
+        sleeper.kill()
+    # Killed, not yet waited for: a zombie (PID 1 of a container may never reap it) is not looked for.
+    deadline = time.monotonic() + 10
+    while sleeper.pid in grader.user_processes(os.getuid()) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert sleeper.pid not in grader.user_processes(os.getuid())
+    sleeper.wait()
 
 
 def test_only_regular_files_of_the_trusted_sides_tar_stream_are_unpacked(tmp_path):
