@@ -106,3 +106,14 @@ def test_the_steps_a_session_reports_reach_on_step_and_the_whole_output_its_log(
     grader.Grader(args, rubric, on_step=steps.append)._copy_steps(session_output, log)
     assert steps == ['built in 4.1 s', 'move_turtle.launch checked in 9.5 s']
     assert log.getvalue() == session_output.getvalue()
+
+
+def test_a_session_sending_more_than_the_limit_is_read_to_its_end_and_cut():
+    reader, writer = os.pipe()
+    sender = subprocess.Popen(['head', '-c', '300000', '/dev/zero'], stdout=writer)
+    os.close(writer)
+    kept = bytearray()
+    with os.fdopen(reader, 'rb') as pipe:
+        grader._read_at_most(pipe, kept, 1000)
+    assert sender.wait(10) == 0   # never blocked on a full pipe
+    assert kept == b'\0' * 1000
