@@ -3,6 +3,7 @@
 time, exact ranges, a collision, bad input, pictures, bad parameters."""
 import math
 import os
+import shutil
 import subprocess
 import tempfile
 import time
@@ -16,7 +17,7 @@ from nav_msgs.msg import Odometry
 from PIL import Image
 from rosgraph_msgs.msg import Clock, Log
 from sensor_msgs.msg import JointState, LaserScan
-from std_msgs.msg import UInt32
+from std_msgs.msg import String, UInt32
 from std_srvs.srv import Trigger
 
 from course_testing.recording import TopicRecorder
@@ -114,11 +115,11 @@ class SimTimeTest(unittest.TestCase):
         self.assertEqual(self.odom.latest().twist.twist.linear.x, -0.5)
         self.drive(0.0)
 
-    def test_save_picture(self):
+    def test_save_picture_where_the_parameter_said_at_start_up(self):
         self.stopped_away_from_the_wall()
-        folder = tempfile.mkdtemp()
-        path = os.path.join(folder, 'top.png')
-        rospy.set_param('/fake_tb3/picture_png', path)
+        path = rospy.get_param('/fake_tb3/picture_png')   # a new folder's (sim_time.test)
+        os.makedirs(os.path.dirname(path))
+        self.addCleanup(shutil.rmtree, os.path.dirname(path))   # the picture at shutdown has nowhere to go
         save = rospy.ServiceProxy('/fake_tb3/save_picture', Trigger)
         save.wait_for_service(10)
         reply = save()
@@ -127,10 +128,24 @@ class SimTimeTest(unittest.TestCase):
         image = np.asarray(Image.open(path).convert('RGB'))
         red = np.all(image == (230, 20, 20), axis=2).sum()
         self.assertGreater(red, 50)  # the scan's dots on the wall
-        rospy.set_param('/fake_tb3/picture_png', os.path.join(folder, 'missing', 'top.png'))
+        # Set later, the parameter changes nothing: fake_tb3 writes where it was told at start-up.
+        elsewhere = os.path.join(tempfile.mkdtemp(), 'elsewhere.png')
+        rospy.set_param('/fake_tb3/picture_png', elsewhere)
+        self.assertEqual(save().message, path)
+        self.assertFalse(os.path.exists(elsewhere))
+        os.rmdir(os.path.dirname(elsewhere))
+        os.remove(path)
+        os.mkdir(path)   # a folder where the picture goes: it cannot be written
         reply = save()
         self.assertFalse(reply.success)
         self.assertIn('cannot write', reply.message)
+        # Who called the service, as fake_tb3 tells it.
+        calls = TopicRecorder('/fake_tb3/service_calls', String)
+        try:
+            told = calls.wait_for(lambda message: message.data, 10, 'fake_tb3 to tell who called')
+        finally:
+            calls.close()
+        self.assertEqual(told.data, '/fake_tb3/save_picture %s' % rospy.get_name())
 
     def test_bad_parameters_are_clear_errors(self):
         cases = [(['_model:=burgr'], "unknown TurtleBot3 model 'burgr'"),

@@ -12,8 +12,10 @@ import rostest
 from geometry_msgs.msg import Twist
 from PIL import Image as PilImage
 from sensor_msgs.msg import Image
+from std_msgs.msg import String
 from std_srvs.srv import Empty, Trigger
 
+from course_common.service_calls import parse
 from course_testing.recording import TopicRecorder
 from course_testing.waiting import wait_until
 from turtlesim.msg import Color, Pose
@@ -125,6 +127,18 @@ class TurtlesimInterfaceTest(unittest.TestCase):
         pose = self.pose.next_message()
         self.assertAlmostEqual(pose.x, 3.0 + math.cos(-2.566370 + math.pi / 2), places=5)
         self.assertAlmostEqual(pose.y, 4.0 + math.sin(-2.566370 + math.pi / 2), places=5)
+
+    def test_who_called_a_service_first_is_told_on_service_calls(self):
+        self.teleport(3.0, 4.0, 0.0)   # and setUp called /reset
+        calls = TopicRecorder('/turtlesim/service_calls', String)
+        try:
+            told = calls.wait_for(lambda message: '/turtle1/teleport_absolute' in message.data, 10,
+                                  'the teleport on /turtlesim/service_calls')
+        finally:
+            calls.close()
+        self.assertIn(('/reset', rospy.get_name()), parse(told.data))
+        self.assertIn(('/turtle1/teleport_absolute', rospy.get_name()), parse(told.data))
+        self.assertEqual(told._connection_header['callerid'], '/turtlesim')
 
     # --- log texts and errors ---
     def test_wall_warning_and_silent_top_clamp(self):

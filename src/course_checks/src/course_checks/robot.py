@@ -1,5 +1,6 @@
 """The simulated TurtleBot3 as fake_tb3 publishes it: odometry (world pose, simulated time),
-scans, collisions, the commands and the clock, recorded; and who published them."""
+scans, collisions, the commands and the clock, recorded; and who published them or called its
+services."""
 import bisect
 import math
 
@@ -11,6 +12,7 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import UInt32
 
+from course_checks.service_calls import ServiceCallWatch, sender
 from course_testing.recording import TopicRecorder, path_length
 
 SIMULATOR = '/fake_tb3'
@@ -28,7 +30,7 @@ def node_names():
 
 def senders(recorder):
     """The nodes that sent the messages a TopicRecorder kept (rospy notes each message's sender)."""
-    return {getattr(message, '_connection_header', {}).get('callerid', '?') for message in recorder.messages()}
+    return {sender(message) for message in recorder.messages()}
 
 
 class RobotWatch:
@@ -40,7 +42,9 @@ class RobotWatch:
         self._collisions = TopicRecorder('/collisions', UInt32)
         self._commands = TopicRecorder(cmd_vel, Twist)
         self._clock = TopicRecorder('/clock', Clock)
-        self._recorders = [self._odom, self._scans, self._collisions, self._commands, self._clock]
+        self._service_calls = ServiceCallWatch(SIMULATOR)
+        self._recorders = [self._odom, self._scans, self._collisions, self._commands, self._clock,
+                           self._service_calls]
         self._poses_so_far = []  # the odometry converted so far: checks poll the poses often
 
     def reset(self):
@@ -63,6 +67,10 @@ class RobotWatch:
             if others:
                 found[name] = sorted(others)
         return found
+
+    def service_calls(self):
+        """[(service, caller)] of fake_tb3's services, as fake_tb3 noted them: the lab uses none."""
+        return self._service_calls.calls()
 
     @property
     def collisions(self):

@@ -6,7 +6,7 @@ import math
 import numpy
 from turtlesim.msg import Pose
 
-from course_checks import figures, printed_poses
+from course_checks import figures, printed_poses, service_calls
 from course_checks.verdict import Verdict
 from course_testing.recording import TopicRecorder, path_length
 
@@ -17,6 +17,7 @@ JITTER = 0.25       # seconds a pose may arrive late on a busy machine (jumps)
 MOVING_M = 0.01      # over the last ten poses heard: the turtle moves
 STILL_M = 1e-3       # over STILL_SECONDS of poses: the turtle stands still
 STILL_SECONDS = 0.3
+UNUSED_SERVICES = ('teleport_absolute', 'teleport_relative', 'reset')   # the labs move turtles by cmd_vel
 
 
 def turtle_poses(turtle):
@@ -115,6 +116,13 @@ def no_jumps(recorder, turtle):
     (x0, y0), (x1, y1) = found[0]
     return Verdict(False, '%s jumped %d times without driving there, first from (%.2f, %.2f) to (%.2f, %.2f): '
                    'a teleport or /reset, which this lab does not use' % (turtle, len(found), x0, y0, x1, y1))
+
+
+def no_unused_calls(simulator):
+    """A failing verdict naming who called a teleport or /reset of turtlesim (as turtlesim noted
+    the call), or None when nobody did."""
+    calls = service_calls.unused(service_calls.heard_calls(simulator), UNUSED_SERVICES)
+    return service_calls.called(['x'], calls)['x'] if calls else None
 
 
 def full_turn(radius):

@@ -124,6 +124,13 @@ def unpack_output(stream_bytes, staging):
         pass   # the session broke down before it sent its folder: no result, the reason says why
 
 
+def _read_at_most(pipe, kept, limit):
+    """Everything from `pipe` until its end (so the writer never blocks), the first `limit` bytes
+    kept in the bytearray `kept`."""
+    for chunk in iter(lambda: pipe.read(65536), b''):
+        kept += chunk[:max(0, limit - len(kept))]
+
+
 def marked_processes(mark):
     """The ids of the processes whose environment carries `mark` (NAME=value)."""
     needle = mark.encode()
@@ -138,13 +145,27 @@ def marked_processes(mark):
     return found
 
 
-def stop_marked(mark):
-    """SIGKILL every process whose environment carries `mark`: what a --no-container session
-    started, even in sessions of its own or reparented to init (roslaunch's nodes are). Again
-    until none is left (one may fork meanwhile). Returns how many were stopped."""
+def user_processes(uid):
+    """The ids of the live processes (not zombies) of the user `uid` (none where /proc is not
+    mounted: in the chroot of Gradescope's image the container's end stops them)."""
+    found = []
+    for pid in (int(name) for name in os.listdir('/proc') if name.isdigit()) if os.path.isdir('/proc') else ():
+        try:
+            with open('/proc/%d/status' % pid) as stream:
+                fields = dict(line.split(':', 1) for line in stream if ':' in line)
+        except OSError:
+            continue
+        if str(uid) in fields.get('Uid', '').split() and not fields.get('State', '').strip().startswith('Z'):
+            found.append(pid)
+    return found
+
+
+def stop_found(find):
+    """SIGKILL every process whose id find() lists (never ours), again until none is left (one
+    may fork meanwhile). Returns how many were stopped."""
     stopped = 0
-    for _ in range(20):
-        found = marked_processes(mark)
+    for _ in range(50):
+        found = [pid for pid in find() if pid != os.getpid()]
         for pid in found:
             try:
                 os.kill(pid, signal.SIGKILL)
@@ -155,6 +176,17 @@ def stop_marked(mark):
             break
         time.sleep(0.1)
     return stopped
+
+
+def stop_marked(mark):
+    """Every process whose environment carries `mark`: what a --no-container session started, even
+    in sessions of its own or reparented to init (roslaunch's nodes are)."""
+    return stop_found(lambda: marked_processes(mark))
+
+
+def stop_user(uid):
+    """Every process of the user `uid` (the student's side in a sandbox)."""
+    return stop_found(lambda: user_processes(uid))
 
 
 def _limit_resources():
@@ -262,54 +294,68 @@ class Grader:
                    self.args.image, 'bash', '-c', 'source tools/env.sh && exec '
                    'rosrun course_grader grade_submission "$@"', 'grade_submission', '--student-user', 'student',
                    '--send'] + self._session_args('/submission/' + package, '/grader/out', '/tmp/student', student)
-        log = os.path.join(staging, 'grader.txt')
-        sent = b''
-        try:
-            with open(log, 'wb') as stream:
-                process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=stream)
-                try:
-                    sent, _ = process.communicate(timeout=self.wall_limit)
-                    code = process.returncode
-                except subprocess.TimeoutExpired:
-                    code = None
-        finally:
-            # Whatever happened: the container and everything in it are gone.
+
+        def stop(process):   # whatever happened: the container and everything in it are gone
             subprocess.run(['docker', 'rm', '-f', name], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-            if 'process' in locals() and process.poll() is None:
+            if process.poll() is None:
                 process.kill()
                 process.wait()
-        unpack_output(sent[:MAX_COPIED_BYTES + 2 ** 20], staging)
-        return self._reason(code, log)
+        return self._run_session(command, staging, stop)
 
     def _run_on_host(self, submission, package, student, staging, scratch):
         """The session on this machine, as our user: the student's side apart only in its
-        environment (no overlay on the trusted side) and its process groups (docs/grading.md)."""
+        environment (no overlay on the trusted side), its process groups and its folder, and the
+        result read from the session's standard output, as from a container (docs/grading.md)."""
         from course_testing.processes import stop_process_group
         mark = '%s-%s' % (self.run_id, uuid.uuid4().hex)
         env = dict(os.environ, ROS_HOME=os.path.join(scratch, 'ros'))
         env[RUN_MARK] = mark
-        argv = ['rosrun', 'course_grader', 'grade_submission'] + self._session_args(
-            os.path.join(submission, package), staging, os.path.join(scratch, 'student'), student)
+        # The session's output folder and the student's side's folder: apart from each other and
+        # from the grader's scratch (the submission, what comes back).
+        session_out = tempfile.mkdtemp(prefix='course-grader-session-')
+        student_scratch = tempfile.mkdtemp(prefix='course-grader-student-')
+        argv = ['rosrun', 'course_grader', 'grade_submission', '--send'] + self._session_args(
+            os.path.join(submission, package), session_out, student_scratch, student)
+
+        def stop(process):
+            stop_process_group(process, 10)
+            # The session stops what it started; what escaped it (a node in a session of its
+            # own, reparented to init) carries the mark in its environment and goes now.
+            stop_marked('%s=%s' % (RUN_MARK, mark))
+        try:
+            return self._run_session(argv, staging, stop, env=env, start_new_session=True,
+                                     preexec_fn=_limit_resources)
+        finally:
+            for folder in (session_out, student_scratch):
+                shutil.rmtree(folder, ignore_errors=True)
+
+    def _run_session(self, argv, staging, stop, **popen_args):
+        """A grading session (grade_submission --send): its log (standard error) into
+        staging/grader.txt, each step it reports to on_step as it comes, and the output folder it
+        sends as a tar stream on standard output unpacked into staging. stop(process) ends it,
+        whatever happened. Returns why there is no result, or None."""
         log = os.path.join(staging, 'grader.txt')
+        sent = bytearray()
         with open(log, 'wb') as stream:
-            process = subprocess.Popen(argv, stdin=subprocess.DEVNULL, env=env, start_new_session=True,
-                                       stdout=subprocess.PIPE if self.on_step else stream, stderr=subprocess.STDOUT,
-                                       preexec_fn=_limit_resources)
+            process = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                       stderr=subprocess.PIPE if self.on_step else stream, **popen_args)
+            reader = threading.Thread(target=_read_at_most, args=(process.stdout, sent, MAX_COPIED_BYTES + 2 ** 20),
+                                      daemon=True)
+            reader.start()
             copier = None
             if self.on_step:
-                copier = threading.Thread(target=self._copy_steps, args=(process.stdout, stream), daemon=True)
+                copier = threading.Thread(target=self._copy_steps, args=(process.stderr, stream), daemon=True)
                 copier.start()
             try:
                 code = process.wait(self.wall_limit)
             except subprocess.TimeoutExpired:
                 code = None
             finally:
-                stop_process_group(process, 10)
-                # The session stops what it started; what escaped it (a node in a session of its
-                # own, reparented to init) carries the mark in its environment and goes now.
-                stop_marked('%s=%s' % (RUN_MARK, mark))
+                stop(process)
+                reader.join(10)
                 if copier:
                     copier.join(10)
+        unpack_output(bytes(sent), staging)
         return self._reason(code, log)
 
     def _copy_steps(self, pipe, stream):

@@ -19,7 +19,7 @@ import uuid
 
 from course_grader import classroom, feedback, gradescope, results, rubric as rubrics
 from course_grader.check import print_result
-from course_grader.grader import Grader, _limit_resources
+from course_grader.grader import Grader, _limit_resources, stop_user
 from course_grader.submission import (MAX_UNPACKED_BYTES, SubmissionError, check_folder, find_package, unpack,
                                       upload_inside)
 
@@ -60,33 +60,6 @@ def stage(folder, rubric, staging):
                 os.chmod(path, 0o755 if os.path.isdir(path) or os.stat(path).st_mode & 0o111 else 0o644)
     os.chmod(staging, 0o755)
     return find_package(staging, rubric.package)
-
-
-def user_processes(uid):
-    """The ids of the live processes (not zombies) of the user `uid` (none where /proc is not
-    mounted: in the chroot of Gradescope's image the container's end stops them)."""
-    found = []
-    for pid in (int(name) for name in os.listdir('/proc') if name.isdigit()) if os.path.isdir('/proc') else ():
-        try:
-            with open('/proc/%d/status' % pid) as stream:
-                fields = dict(line.split(':', 1) for line in stream if ':' in line)
-        except OSError:
-            continue
-        if str(uid) in fields.get('Uid', '').split() and not fields.get('State', '').strip().startswith('Z'):
-            found.append(pid)
-    return found
-
-
-def stop_user(uid):
-    """SIGKILL every process of the user `uid` (the student's side), again until none is left."""
-    for _ in range(50):
-        found = [pid for pid in user_processes(uid) if pid != os.getpid()]
-        if not found:
-            return
-        for pid in found:
-            with contextlib.suppress(ProcessLookupError, PermissionError):
-                os.kill(pid, signal.SIGKILL)
-        time.sleep(0.1)
 
 
 def wall_limit(rubric):

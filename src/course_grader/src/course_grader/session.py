@@ -9,6 +9,7 @@ folder, nor signal or trace this process, roscore or the simulators. The result 
 stream on this process's standard output, which no process of the student's holds."""
 import argparse
 import os
+import pwd
 import stat
 import subprocess
 import sys
@@ -17,6 +18,7 @@ import time
 
 from course_checks.launch import Launch
 from course_grader import feedback, labs, results, rubric as rubrics
+from course_grader.grader import stop_user
 from course_grader.results import Verdict
 
 MAX_PICTURE_BYTES = 5 * 2 ** 20
@@ -41,6 +43,14 @@ class StudentSide:
         as_user = {'user': self.user, 'group': self.user, 'extra_groups': []} if self.user else {}
         return subprocess.run(argv, env=self.env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                               stderr=subprocess.DEVNULL, timeout=timeout, check=True, **as_user).stdout
+
+    def stop_all(self):
+        """Every process of the student's user, after the build and after each run: a daemon the
+        build or a run started (in a session of its own) does not live into the next run. As
+        ourselves (--no-container) there is no telling them from ours: the grader's mark stops
+        them after the session."""
+        if self.user:
+            stop_user(pwd.getpwnam(self.user).pw_uid)
 
 
 class Session:
@@ -181,9 +191,11 @@ def grade(rubric, package_dir, out_dir, scratch, student, student_user=None, onl
     try:
         overlay_env = build(session, scratch)
     except BuildFailed as error:
+        side.stop_all()
         outcomes['builds'] = Verdict(False, str(error))
         return results.score(rubric, outcomes, student, error='not run: the package does not build',
                              seconds=time.monotonic() - started)
+    side.stop_all()
     print('grade_submission: built in %.1f s' % (time.monotonic() - started), flush=True)
     outcomes['builds'] = Verdict(True, 'catkin_make built it')
     master = Master(os.path.join(out_dir, 'roscore.txt'))

@@ -4,6 +4,7 @@ import io
 import os
 import subprocess
 import tarfile
+import time
 
 import pytest
 
@@ -60,6 +61,21 @@ def test_what_escaped_a_session_to_init_is_stopped_by_its_mark(tmp_path):
     assert grader.marked_processes(mark) == []
 
 
+def test_the_processes_of_a_user_are_found_but_not_the_dead_ones():
+    sleeper = subprocess.Popen(['sleep', '600'])
+    try:
+        assert sleeper.pid in grader.user_processes(os.getuid())
+        assert sleeper.pid not in grader.user_processes(os.getuid() + 1)
+    finally:
+        sleeper.kill()
+    # Killed, not yet waited for: a zombie (PID 1 of a container may never reap it) is not looked for.
+    deadline = time.monotonic() + 10
+    while sleeper.pid in grader.user_processes(os.getuid()) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert sleeper.pid not in grader.user_processes(os.getuid())
+    sleeper.wait()
+
+
 def test_only_regular_files_of_the_trusted_sides_tar_stream_are_unpacked(tmp_path):
     stream = io.BytesIO()
     with tarfile.open(fileobj=stream, mode='w') as archive:
@@ -90,3 +106,14 @@ def test_the_steps_a_session_reports_reach_on_step_and_the_whole_output_its_log(
     grader.Grader(args, rubric, on_step=steps.append)._copy_steps(session_output, log)
     assert steps == ['built in 4.1 s', 'move_turtle.launch checked in 9.5 s']
     assert log.getvalue() == session_output.getvalue()
+
+
+def test_a_session_sending_more_than_the_limit_is_read_to_its_end_and_cut():
+    reader, writer = os.pipe()
+    sender = subprocess.Popen(['head', '-c', '300000', '/dev/zero'], stdout=writer)
+    os.close(writer)
+    kept = bytearray()
+    with os.fdopen(reader, 'rb') as pipe:
+        grader._read_at_most(pipe, kept, 1000)
+    assert sender.wait(10) == 0   # never blocked on a full pipe
+    assert kept == b'\0' * 1000

@@ -5,8 +5,11 @@ from course_checks.verdict import Verdict
 from course_grader.labs.common import run_each
 
 
-def session(only=None, folder='/nonexistent'):
-    return types.SimpleNamespace(only=only, log_path=lambda name: '%s/%s' % (folder, name))
+def session(only=None, folder='/nonexistent', ran=None):
+    """A session whose student's side notes in `ran` when all its processes are stopped."""
+    stop_all = (lambda: ran.append('stopped')) if ran is not None else (lambda: None)
+    return types.SimpleNamespace(only=only, log_path=lambda name: '%s/%s' % (folder, name),
+                                 student_side=types.SimpleNamespace(stop_all=stop_all))
 
 
 def checks(ran):
@@ -24,6 +27,12 @@ def test_every_run_without_only():
     ran = []
     assert sorted(run_each(session(), checks(ran))) == ['a', 'b', 'c']
     assert ran == ['first', 'second']
+
+
+def test_every_process_of_the_students_side_is_stopped_after_each_run():
+    ran = []
+    run_each(session(ran=ran), checks(ran))
+    assert ran == ['first', 'stopped', 'second', 'stopped']
 
 
 def test_only_runs_the_run_that_judges_that_criterion():

@@ -89,6 +89,7 @@ def run_each(session, checks):
                            'without end (a fork bomb)?')
             for criterion_id in criterion_ids:
                 outcomes[criterion_id] = Verdict(False, reason)
+        session.student_side.stop_all()   # nothing of this run's lives into the next
     return outcomes
 
 

@@ -2,7 +2,9 @@
 the checks of course_checks that move_turtlebot3's own tests use."""
 import math
 
-from course_checks import driving, laser
+import rospy
+
+from course_checks import driving, laser, service_calls
 from course_checks.robot import SIMULATOR, RobotWatch, largest_move, travelled
 from course_checks.verdict import Verdict
 from course_checks.waiting import Deadline
@@ -52,7 +54,10 @@ class Run:
         self.watch = RobotWatch()
         if picture:
             sim_args['picture_png'] = session.picture(picture)
-        # fake_tb3 is the course's: it runs on the trusted side, with the course's environment.
+        # fake_tb3 is the course's: it runs on the trusted side, with the course's environment, and
+        # with no parameter a node of the submission set in an earlier run (a rate, say).
+        if rospy.has_param(SIMULATOR):
+            rospy.delete_param(SIMULATOR)
         self.sim = session.trusted(['roslaunch', 'fake_tb3', 'world.launch'] + [
             '%s:=%s' % item for item in sorted(sim_args.items())], self.sim_log)
         if not self.deadline.wait(self.watch.running):
@@ -66,11 +71,14 @@ class Run:
 
     def judged(self, outcomes):
         """The outcomes, unless what they were judged on was not the simulator's own doing: then
-        they fail, naming who sent what (a node of the submission on odom, scan or clock, or a
-        simulator that a node shut down)."""
+        they fail, naming who sent what (a node of the submission on odom, scan or clock, a node
+        that called fake_tb3's service, or a simulator that a node shut down)."""
         impostors = self.watch.impostors()
         if impostors:
             return faked(outcomes, impostors, SIMULATOR)
+        calls = self.watch.service_calls()
+        if calls:
+            return service_calls.called(outcomes, calls)
         if self.sim_ended:
             reason = ('not judged: the simulator stopped during the run, before the grader stopped it (see %s)'
                       % self.sim_log)

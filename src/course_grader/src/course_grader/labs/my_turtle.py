@@ -97,7 +97,8 @@ def check_turtle(session):
         if impostors:
             outcomes.update(faked(['teleop', 'prints_pose'], impostors, SIMULATOR))
         else:
-            outcomes['teleop'] = turtle.no_jumps(watch, 'turtle1') or outcomes['teleop']
+            outcomes['teleop'] = (turtle.no_unused_calls(SIMULATOR) or turtle.no_jumps(watch, 'turtle1')
+                                  or outcomes['teleop'])
         return outcomes
     finally:
         for run in reversed(runs):

@@ -34,12 +34,13 @@ def _printed(run, pattern):
 
 
 def _on_interface(recorder, name):
-    """A failing verdict when the turtle's poses came from another node than turtlesim, or moved
-    where no velocity took it (a teleport, a /reset); None when the simulator alone moved it."""
+    """A failing verdict when the turtle's poses came from another node than turtlesim, when a node
+    called a teleport or /reset, or the turtle moved where no velocity took it; None when the
+    simulator alone moved it."""
     others = sorted(senders(recorder) - {SIMULATOR})
     if others:
         return faked(['x'], {'%s/pose' % name: others}, SIMULATOR)['x']
-    return turtle.no_jumps(recorder, name)
+    return turtle.no_unused_calls(SIMULATOR) or turtle.no_jumps(recorder, name)
 
 
 class Exercise:

@@ -1,0 +1,63 @@
+"""Who called a simulator's services, as the simulator itself tells it on its latched topic
+~service_calls (course_common.service_calls): a node that called a service the lab does not use
+(fake_tb3's, turtlesim's teleports and /reset) is named, and the criteria judged on that run fail."""
+from std_msgs.msg import String
+
+from course_common.service_calls import parse
+from course_checks.verdict import Verdict
+from course_checks.waiting import wait_for
+from course_testing.recording import TopicRecorder
+
+
+def sender(message):
+    """The node that sent a message (rospy notes it in the message's connection header)."""
+    return getattr(message, '_connection_header', {}).get('callerid', '?')
+
+
+class ServiceCallWatch:
+    """The simulator's ~service_calls, recorded: only what the simulator itself sent counts."""
+
+    def __init__(self, simulator):
+        self.simulator = simulator
+        self._recorder = TopicRecorder('%s/service_calls' % simulator, String)
+
+    def _told(self):
+        return [message for message in self._recorder.messages() if sender(message) == self.simulator]
+
+    def heard(self):
+        """The simulator has told its calls (none, at least) since the watch began."""
+        return bool(self._told())
+
+    def calls(self):
+        """[(service, caller)] as the simulator told them last."""
+        told = self._told()
+        return parse(told[-1].data) if told else []
+
+    def clear(self):
+        self._recorder.clear()
+
+    def close(self):
+        self._recorder.close()
+
+
+def heard_calls(simulator, timeout=3.0):
+    """The simulator's calls, heard once from its latched topic ([] when it tells nothing in time)."""
+    watch = ServiceCallWatch(simulator)
+    try:
+        wait_for(watch.heard, timeout)
+        return watch.calls()
+    finally:
+        watch.close()
+
+
+def unused(calls, services=None):
+    """The calls of the services whose last name is one of `services` (None: every service)."""
+    return [(service, caller) for service, caller in calls
+            if services is None or service.rsplit('/', 1)[-1] in services]
+
+
+def called(criterion_ids, calls):
+    """Failing verdicts naming who called which service the lab does not use."""
+    named = '; '.join('%s called %s' % (caller, service) for service, caller in calls)
+    reason = 'not judged: %s, which this lab does not use (as the simulator noted the call)' % named
+    return {criterion_id: Verdict(False, reason) for criterion_id in criterion_ids}
