@@ -55,38 +55,120 @@ def cast_rays(x, y, angles, near, far, segments=NO_SEGMENTS, circles=NO_CIRCLES)
     only, like Gazebo's one-sided meshes). A ray touching a segment end or grazing a circle hits;
     a ray running along a segment does not.
     """
-    cos_a, sin_a = np.cos(angles), np.sin(angles)
-    best = np.full(cos_a.shape, np.inf)
+    return cast_scans(np.array([[x, y, 0.0]]), angles, near, far, segments, circles)[0]
+
+
+def cast_scans(poses, angles, near, far, segments=NO_SEGMENTS, circles=NO_CIRCLES, owners=None):
+    """cast_rays from several origins at once: ranges (len(poses), len(angles)), row i from
+    (x, y) of poses[i] = (x, y, yaw) along yaw + angles. owners: for each segment the index of
+    the pose that does not see it (the laser's own robot), or -1.
+
+    Each ray is tested only against the outlines it can reach: those within `far` that face its
+    origin and whose angle, seen from there, spans its direction (with a margin far wider than
+    rounding). A ray left out could not have hit, so the ranges are those of testing every ray
+    against every outline, beam by beam; the work grows with the rays that pass near an outline,
+    not with rays times outlines (30 robots seeing each other: 30 x 29 bodies, 360 beams each).
+    """
+    poses = np.asarray(poses, dtype=float).reshape(-1, 3)
+    angles = np.asarray(angles, dtype=float)
+    count, beams = len(poses), len(angles)
+    px, py = poses[:, 0:1], poses[:, 1:2]
+    directions = angles + poses[:, 2:3]  # as a laser adds its yaw to its beam angles
+    cos_a, sin_a = np.cos(directions).ravel(), np.sin(directions).ravel()
+    # The beams by their angle from the yaw, in [0, 2 pi): where an outline's span falls.
+    relative = np.mod(angles, 2 * np.pi)
+    beam_order = np.argsort(relative, kind='stable')
+    rays = _RaySpans(relative[beam_order], beam_order, poses[:, 2], beams)
+    ray_ids, distances = [], []
     if len(segments):
-        ax, ay = segments[:, 0] - x, segments[:, 1] - y
+        ax, ay = segments[:, 0] - px, segments[:, 1] - py  # (poses, segments)
         ex, ey = segments[:, 2] - segments[:, 0], segments[:, 3] - segments[:, 1]
         # Ray t*d meets segment a + u*e where t = (a x e) / (d x e) and u = (a x d) / (d x e).
         # A ray enters a solid where d x e < 0 (it comes from the right of the segment, outside),
         # which with t > 0 needs a x e < 0: segments facing away are dropped first, with those
-        # out of reach.
+        # out of reach and each laser's own body.
         a_cross_e = ax * ey - ay * ex
-        facing = (a_cross_e < 0) & (_squared_distances(segments, x, y) <= far * far)
-        ax, ay, ex, ey = ax[facing], ay[facing], ex[facing], ey[facing]
-        a_cross_e = a_cross_e[facing]
-        if len(ax):
-            directions = np.stack([cos_a, sin_a], axis=1)
-            products = directions @ np.array([np.concatenate([ey, ay]), np.concatenate([-ex, -ax])])
-            n = len(ax)
-            d_cross_e, a_cross_d = products[:, :n], -products[:, n:]
-            with np.errstate(divide='ignore', invalid='ignore'):
-                t = a_cross_e / d_cross_e
-                u = a_cross_d / d_cross_e
-            hit = (d_cross_e < 0) & (u >= 0.0) & (u <= 1.0) & (t >= near) & (t <= far)
-            best = np.where(hit, t, np.inf).min(axis=1)
-    circles = _circles_near(circles, x, y, far)
+        keep = (a_cross_e < 0) & (_squared_distances(segments, px, py) <= far * far)
+        if owners is not None:
+            keep &= np.asarray(owners)[None, :] != np.arange(count)[:, None]
+        pose_of, segment_of = np.nonzero(keep)
+        ax, ay, a_cross_e = ax[keep], ay[keep], a_cross_e[keep]
+        ex, ey = ex[segment_of], ey[segment_of]
+        # Seen from the origin the segment spans, counterclockwise, from its end a + e to its
+        # start a (facing: a x (a + e) < 0), less than half a turn.
+        bx, by = ax + ex, ay + ey
+        span = np.arctan2(-a_cross_e, ax * bx + ay * by)
+        pair, ray = rays.within(pose_of, np.arctan2(by, bx), span)
+        c, s = cos_a[ray], sin_a[ray]
+        d_cross_e = c * ey[pair] - s * ex[pair]
+        a_cross_d = s * ax[pair] - c * ay[pair]
+        with np.errstate(divide='ignore', invalid='ignore'):
+            t = a_cross_e[pair] / d_cross_e
+            u = a_cross_d / d_cross_e
+        hit = (d_cross_e < 0) & (u >= 0.0) & (u <= 1.0) & (t >= near) & (t <= far)
+        ray_ids.append(ray[hit])
+        distances.append(t[hit])
     if len(circles):
-        mx, my = x - circles[:, 0], y - circles[:, 1]
-        b = np.outer(cos_a, mx) + np.outer(sin_a, my)
-        discriminant = b * b - (mx * mx + my * my - circles[:, 2] ** 2)
+        mx, my = px - circles[:, 0], py - circles[:, 1]  # (poses, circles)
+        centre_distance = np.hypot(mx, my)
+        reach = far + circles[:, 2]
+        pose_of, circle_of = np.nonzero(mx * mx + my * my <= reach * reach)
+        mx, my, centre_distance = (v[pose_of, circle_of] for v in (mx, my, centre_distance))
+        radius = circles[circle_of, 2]
+        # A disc spans 2 asin(r / d) around its centre's direction; all around from inside it.
+        outside = centre_distance > radius
+        half = np.arcsin(np.where(outside, radius / np.where(outside, centre_distance, 1.0), 1.0))
+        span = np.where(outside, 2 * half, 2 * np.pi)
+        pair, ray = rays.within(pose_of, np.arctan2(-my, -mx) - half, span)
+        mx, my = mx[pair], my[pair]
+        b = cos_a[ray] * mx + sin_a[ray] * my
+        discriminant = b * b - (mx * mx + my * my - radius[pair] ** 2)
         t = -b - np.sqrt(np.maximum(discriminant, 0.0))  # where the ray enters the disc
         hit = (discriminant >= 0.0) & (t >= near) & (t <= far)
-        best = np.minimum(best, np.where(hit, t, np.inf).min(axis=1))
-    return best
+        ray_ids.append(ray[hit])
+        distances.append(t[hit])
+    best = np.full(count * beams, np.inf)
+    if ray_ids:
+        ray_ids, distances = np.concatenate(ray_ids), np.concatenate(distances)
+        order = np.lexsort((distances, ray_ids))  # by ray, nearest first
+        ray_ids, distances = ray_ids[order], distances[order]
+        first = np.ones(len(ray_ids), dtype=bool)
+        first[1:] = ray_ids[1:] != ray_ids[:-1]
+        best[ray_ids[first]] = distances[first]
+    return best.reshape(count, beams)
+
+
+# Radians added on each side of an outline's span: far more than the rounding of the angles,
+# far less than a beam's spacing matters (a wider span only tests more rays).
+SPAN_MARGIN = 1e-6
+
+
+class _RaySpans:
+    """Finds the rays of each origin whose direction lies in a span of angles."""
+
+    def __init__(self, sorted_angles, beam_order, yaws, beams):
+        self._sorted, self._order, self._yaws, self._beams = (sorted_angles, beam_order, yaws,
+                                                              beams)
+
+    def within(self, pose_of, start, span):
+        """(pair, ray): for each pair k (origin pose_of[k], span of angles from start[k],
+        counterclockwise, span[k] < 2 pi or 2 pi for all around) the flat index, origin * beams
+        + beam, of each ray whose direction lies within it."""
+        two_pi = 2 * np.pi
+        first_angle = np.mod(start - self._yaws[pose_of] - SPAN_MARGIN, two_pi)
+        last_angle = first_angle + span + 2 * SPAN_MARGIN
+        whole = span >= two_pi
+        first = np.where(whole, 0, np.searchsorted(self._sorted, first_angle, 'left'))
+        last = np.where(whole, self._beams, np.searchsorted(self._sorted, last_angle, 'right'))
+        # Past 2 pi the span goes on from angle 0.
+        wrapped = np.where(whole, 0, np.searchsorted(self._sorted, last_angle - two_pi, 'right'))
+        pairs = np.arange(len(pose_of))
+        pair = np.concatenate([pairs, pairs])
+        low = np.concatenate([first, np.zeros_like(wrapped)])
+        counts = np.concatenate([last - first, wrapped])
+        pair = np.repeat(pair, counts)
+        position = (np.arange(len(pair)) + np.repeat(low - (np.cumsum(counts) - counts), counts))
+        return pair, pose_of[pair] * self._beams + self._order[position]
 
 
 def boxes_overlap(poses, box, segments=NO_SEGMENTS, circles=NO_CIRCLES):
@@ -131,13 +213,24 @@ def boxes_overlap(poses, box, segments=NO_SEGMENTS, circles=NO_CIRCLES):
 def box_outline(x, y, yaw, box):
     """The four sides of the rectangle `box` carried by pose (x, y, yaw): a (4, 4) segment array
     running counterclockwise."""
-    centre_x, half_length, half_width = box
-    local = np.array([[half_length, half_width], [-half_length, half_width],
-                      [-half_length, -half_width], [half_length, -half_width]])
-    c, s = np.cos(yaw), np.sin(yaw)
-    corners_x = x + (centre_x + local[:, 0]) * c - local[:, 1] * s
-    corners_y = y + (centre_x + local[:, 0]) * s + local[:, 1] * c
-    return np.stack([corners_x, corners_y, np.roll(corners_x, -1), np.roll(corners_y, -1)], axis=1)
+    return box_outlines(np.array([[x, y, yaw]]), np.array([box]))[0]
+
+
+# Corners of a box counterclockwise, as signs of its half length and half width.
+_CORNER_SIGNS = np.array([[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]])
+
+
+def box_outlines(poses, boxes):
+    """box_outline of many: poses (N, 3) x, y, yaw, boxes (N, 3) as `box`; an (N, 4, 4) array."""
+    poses, boxes = np.asarray(poses, dtype=float), np.asarray(boxes, dtype=float)
+    local_x = boxes[:, 0:1] + _CORNER_SIGNS[:, 0] * boxes[:, 1:2]
+    local_y = _CORNER_SIGNS[:, 1] * boxes[:, 2:3]
+    c, s = np.cos(poses[:, 2:3]), np.sin(poses[:, 2:3])
+    corners_x = poses[:, 0:1] + local_x * c - local_y * s
+    corners_y = poses[:, 1:2] + local_x * s + local_y * c
+    following = [1, 2, 3, 0]
+    return np.stack([corners_x, corners_y, corners_x[:, following], corners_y[:, following]],
+                    axis=2)
 
 
 def nearby(segments, circles, x, y, radius):

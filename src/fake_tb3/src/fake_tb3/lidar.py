@@ -4,7 +4,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fake_tb3.geometry import cast_rays
+from fake_tb3.geometry import cast_scans
 
 
 @dataclass(frozen=True)
@@ -29,9 +29,9 @@ LDS_01 = LaserSpec()
 
 
 class Laser:
-    """Produces scans: the distance to the first surface in [range_min, range_max] along each
-    beam, plus Gaussian noise on the values in range (then clamped to the range); +inf where
-    nothing is hit.
+    """One robot's laser. Its scans (scan_all) are the distance to the first surface in
+    [range_min, range_max] along each beam, plus Gaussian noise on the values in range (then
+    clamped to the range); +inf where nothing is hit.
 
     noise_stddev 0 gives exact distances; seed makes the noise repeatable (None: random).
     """
@@ -42,15 +42,32 @@ class Laser:
         self.spec = spec
         self.noise_stddev = noise_stddev
         self._random = np.random.default_rng(seed)
-        self._beam_angles = spec.beam_angles
 
-    def scan(self, x, y, yaw, segments, circles):
-        """Ranges (float array of spec.samples) of a laser at (x, y) heading yaw."""
-        spec = self.spec
-        ranges = cast_rays(x, y, self._beam_angles + yaw, spec.range_min, spec.range_max,
-                           segments, circles)
+    def add_noise(self, ranges):
+        """Exact `ranges` of one scan made noisy in place; returns them."""
         if self.noise_stddev > 0:
+            spec = self.spec
             hit = np.isfinite(ranges)
             noisy = ranges[hit] + self._random.normal(0.0, self.noise_stddev, int(hit.sum()))
             ranges[hit] = np.clip(noisy, spec.range_min, spec.range_max)
         return ranges
+
+
+def scan_all(lasers, poses, segments, circles, owners=None):
+    """A scan of each of `lasers` (Laser) at its pose (x, y, yaw of the laser in the world), all
+    cast at once: a list of ranges arrays (float, spec.samples each). owners: for each segment,
+    the index of the laser that does not see it (its own robot's body), or -1."""
+    scans = [None] * len(lasers)
+    poses = np.asarray(poses, dtype=float).reshape(-1, 3)
+    for spec in set(laser.spec for laser in lasers):
+        chosen = [index for index, laser in enumerate(lasers) if laser.spec == spec]
+        group_owners = None
+        if owners is not None:  # owners as indices among this spec's lasers
+            among = np.full(len(lasers) + 1, -1)
+            among[chosen] = np.arange(len(chosen))
+            group_owners = among[np.asarray(owners)]
+        ranges = cast_scans(poses[chosen], spec.beam_angles, spec.range_min, spec.range_max,
+                            segments, circles, group_owners)
+        for index, row in zip(chosen, ranges):
+            scans[index] = lasers[index].add_noise(row)
+    return scans

@@ -1,4 +1,5 @@
 """The TurtleBot3 models: the numbers of the Gazebo robots that the simulator needs."""
+import functools
 import math
 from dataclasses import dataclass
 
@@ -25,7 +26,7 @@ class RobotModel:
     casters: tuple      # (x, y, z) of each caster
     camera_offset: tuple = None  # camera_link (x, y, z), waffles only
 
-    @property
+    @functools.cached_property
     def body_corner_radius(self):
         """Distance from base_footprint to the body's farthest corner: how far a spin sweeps."""
         return math.hypot(abs(self.body_offset_x) + self.body_length / 2, self.body_width / 2)

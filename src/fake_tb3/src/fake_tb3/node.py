@@ -12,9 +12,10 @@ next tick. A picture copies the simulation under a lock that every tick holds to
 outside it.
 
 Speed (docs/benchmarks.md): each message is serialised once and only its changing fields are
-written at each tick (fake_tb3.prebuilt); rospy's writer threads send each subscriber's messages
-in batches (course_common.batched_writes); on simulated time the node sets its own rospy time
-instead of hearing its own /clock.
+written at each tick (fake_tb3.prebuilt); the simulation thread hands them to the subscribers'
+connections and sends each one's messages in one write per turn (course_common.batched_writes),
+with no writer thread per subscriber; every robot's scan is cast at once; on simulated time the
+node sets its own rospy time instead of hearing its own /clock.
 """
 import math
 import os
@@ -168,40 +169,39 @@ class RobotInterface:
         robot = self.robot
         half_yaw = robot.yaw / 2
         qz, qw = math.sin(half_yaw), math.cos(half_yaw)
-        if self.odom.get_num_connections():
+        if batched_writes.subscribed(self.odom):
             linear, angular = robot.velocity
             self.odom_message.update(stamp.secs, stamp.nsecs, robot.x, robot.y, qz, qw,
                                      linear, angular)
-            self.odom.publish(self.odom_message)
-        if tf_publisher.get_num_connections():
+            batched_writes.publish(self.odom, self.odom_message)
+        if batched_writes.subscribed(tf_publisher):
             self.tf_message.update(stamp.secs, stamp.nsecs, robot.x, robot.y, qz, qw)
-            tf_publisher.publish(self.tf_message)
+            batched_writes.publish(tf_publisher, self.tf_message)
 
     def publish_joint_states(self, stamp):
-        if self.joint_states.get_num_connections():
+        if batched_writes.subscribed(self.joint_states):
             robot = self.robot
             left, right = robot.wheel_angles
             left_speed, right_speed = wheel_turns(*robot.velocity, robot.model)  # in one second
             self.joints_message.update(stamp.secs, stamp.nsecs, left, right, left_speed,
                                        right_speed)
-            self.joint_states.publish(self.joints_message)
+            batched_writes.publish(self.joint_states, self.joints_message)
 
     def publish_imu(self, stamp):
         reading = self.imu_sensor.read(self.robot)  # every period: it differentiates the speed
-        if self.imu.get_num_connections():
+        if batched_writes.subscribed(self.imu):
             half_yaw = reading.yaw / 2
             self.imu_message.update(stamp.secs, stamp.nsecs, math.sin(half_yaw),
                                     math.cos(half_yaw), reading.angular_velocity,
                                     reading.acceleration_x, reading.acceleration_y,
                                     reading.acceleration_z)
-            self.imu.publish(self.imu_message)
+            batched_writes.publish(self.imu, self.imu_message)
 
-    def publish_scan(self, stamp, simulation):
-        ranges = simulation.scan(self.robot)  # also without subscribers: pictures show it
-        if self.scan.get_num_connections():
+    def publish_scan(self, stamp, ranges):
+        if batched_writes.subscribed(self.scan):
             self.scan_message.update(stamp.secs, stamp.nsecs)
             self.scan_message.write_array(ranges)
-            self.scan.publish(self.scan_message)
+            batched_writes.publish(self.scan, self.scan_message)
 
 
 class FakeTb3Node:
@@ -304,7 +304,7 @@ class FakeTb3Node:
                 interface.collisions.publish(UInt32(interface.robot.collisions))
         if self.clock:
             self.clock_message.update(stamp.secs, stamp.nsecs)
-            self.clock.publish(self.clock_message)
+            batched_writes.publish(self.clock, self.clock_message)
 
     def _publish_odometry(self, stamp):
         for interface in self.interfaces:
@@ -319,8 +319,9 @@ class FakeTb3Node:
             interface.publish_imu(stamp)
 
     def _publish_scans(self, stamp):
-        for interface in self.interfaces:
-            interface.publish_scan(stamp, self.simulation)
+        # Also without subscribers: pictures show the scans.
+        for interface, ranges in zip(self.interfaces, self.simulation.scans()):
+            interface.publish_scan(stamp, ranges)
 
     # --- pictures ------------------------------------------------------------------------------
     def picture_path(self):
@@ -349,6 +350,8 @@ class FakeTb3Node:
             next_ns = min(periodic.next_ns for periodic, _ in self.schedules)
             due = pacer.due(next_ns)
             now = time.monotonic()
+            if now < due:
+                writer_turns.flush()  # what the last ticks published, before waiting
             while now < due and not rospy.is_shutdown():
                 time.sleep(min(due - now, 0.05))
                 now = time.monotonic()
@@ -370,7 +373,8 @@ class FakeTb3Node:
                     if rospy.core.is_shutdown_requested():  # publishers close early in shutdown
                         return
                     raise
-            writer_turns.maybe_yield()  # the messages go out while the simulation runs flat out
+            writer_turns.maybe_flush()  # the messages go out while the simulation runs flat out
+        writer_turns.flush()
 
     def shutdown_picture(self):
         if self.picture_png:

@@ -2,11 +2,13 @@
 import copy
 import logging
 import math
+import types
 
 import numpy as np
 
-from fake_tb3.geometry import box_outline, boxes_overlap, clearance, nearby
+from fake_tb3.geometry import box_outlines, boxes_overlap, clearance, nearby
 from fake_tb3.kinematics import arc_poses, wheel_turns, wrap_angle
+from fake_tb3.lidar import scan_all
 
 # Longest step any point of the body may make between two overlap tests. Much smaller than the
 # body, so a moving body cannot jump over an obstacle, however thin.
@@ -26,6 +28,8 @@ CONTACT_TOLERANCE = 1e-4
 CONTACT_ROUNDS = 2
 CONTACT_SAMPLES = 63
 TRAIL_SPACING = 0.02
+# Robots free to move that step together, in one go (fewer move one by one, which costs less).
+TOGETHER = 4
 # m/s. No point of the body may move faster: a command that asks more is scaled down, so that
 # the pose stays a finite number (at 1e308 m/s it would overflow within two seconds).
 SPEED_OF_LIGHT = 299792458.0
@@ -52,7 +56,6 @@ class SimRobot:
         self.free_travel = 0.0
         self.trail = [(self.x, self.y)]
         self.last_scan = None  # (x, y, yaw of the laser, ranges) of the latest scan
-        self._outline_pose = self._outline = None
 
     @property
     def label(self):
@@ -62,12 +65,6 @@ class SimRobot:
     @property
     def pose(self):
         return self.x, self.y, self.yaw
-
-    def outline(self):
-        """The sides of the body, as others see and hit it (kept until the robot moves)."""
-        if self._outline_pose != self.pose:
-            self._outline_pose, self._outline = self.pose, box_outline(*self.pose, self.box)
-        return self._outline
 
     def laser_pose(self):
         sx, sy, _ = self.model.scan_offset
@@ -159,17 +156,48 @@ def step_robot(robot, dt, obstacles):
     fraction = 1.0
     travel = sweep(robot, dt)
     if travel > robot.free_travel:
-        segments, circles = obstacles()
-        overlap = _first_overlap(robot, dt, segments, circles)
-        if overlap is not None:
-            fraction = _contact_fraction(robot, dt, *overlap)
+        if travel:
+            segments, circles = obstacles()
+            overlap = _first_overlap(robot, dt, segments, circles)
+            if overlap is not None:
+                fraction = _contact_fraction(robot, dt, *overlap)
         robot.free_travel = 0.0
-    robot.free_travel -= travel * fraction
     duration = fraction * dt
     x, y, yaw = arc_poses(robot.x, robot.y, robot.yaw, linear, angular, duration)
     robot.x, robot.y, robot.yaw = float(x), float(y), wrap_angle(float(yaw))
     left, right = wheel_turns(linear * duration, angular * duration, robot.model)
     robot.wheel_angles = (robot.wheel_angles[0] + left, robot.wheel_angles[1] + right)
+    return _moved(robot, travel, fraction, obstacles)
+
+
+def step_free_robots(robots, travels, dt, obstacles_for):
+    """step_robot for robots whose step needs no overlap test (their free travel covers their
+    sweep, `travels`, or they stay), all of them in one go. obstacles_for(robot) is step_robot's
+    obstacles() of each."""
+    linear = np.array([robot.command[0] for robot in robots])
+    angular = np.array([robot.command[1] for robot in robots])
+    x, y, yaw = arc_poses(np.array([robot.x for robot in robots]),
+                          np.array([robot.y for robot in robots]),
+                          np.array([robot.yaw for robot in robots]), linear, angular, dt)
+    wheels = types.SimpleNamespace(
+        wheel_separation=np.array([robot.model.wheel_separation for robot in robots]),
+        wheel_radius=np.array([robot.model.wheel_radius for robot in robots]))
+    left, right = wheel_turns(linear * dt, angular * dt, wheels)
+    for robot, travel, x, y, yaw, left, right in zip(robots, travels, x.tolist(), y.tolist(),
+                                                     wrap_angle(yaw).tolist(), left.tolist(),
+                                                     right.tolist()):
+        robot.x, robot.y, robot.yaw = x, y, yaw
+        robot.wheel_angles = (robot.wheel_angles[0] + left, robot.wheel_angles[1] + right)
+        if travel > robot.free_travel:  # it stays, and others came nearer
+            robot.free_travel = 0.0
+        _moved(robot, travel, 1.0, lambda robot=robot: obstacles_for(robot))
+
+
+def _moved(robot, travel, fraction, obstacles):
+    """What follows a step in which robot moved `fraction` of its command's path (of length
+    `travel`): speed, trail, contacts, free travel. Returns True when it began a contact."""
+    linear, angular = robot.command
+    robot.free_travel -= travel * fraction
     robot.velocity = (linear * fraction, angular * fraction)
     last_x, last_y = robot.trail[-1]
     if math.hypot(robot.x - last_x, robot.y - last_y) >= TRAIL_SPACING:
@@ -213,6 +241,7 @@ class Simulation:
         self.clamp_speed = clamp_speed
         self.log = log or logging.getLogger('fake_tb3')
         self.time = 0.0  # simulated seconds since the start
+        self._outlines_poses = self._outlines = None
 
     def command(self, robot, linear, angular):
         """Make (linear m/s, angular rad/s) `robot`'s command from now until the next one.
@@ -252,12 +281,23 @@ class Simulation:
                     self.log.info('%s: no cmd_vel for %.2f s, stopping'
                                   % (robot.label, self.command_timeout))
 
+    def outlines(self):
+        """Every robot's body sides as the others see and hit them, (4 x robots, 4) segments in
+        the order of self.robots; made once for the robots' poses, in one go."""
+        poses = [robot.pose for robot in self.robots]
+        if poses != self._outlines_poses:
+            self._outlines_poses = poses
+            boxes = [robot.box for robot in self.robots]
+            self._outlines = box_outlines(poses, boxes).reshape(-1, 4)
+        return self._outlines
+
     def obstacles_for(self, robot):
         """(segments, circles) that `robot` sees and hits."""
         segments = self.world.segments
         if self.robots_see_each_other and len(self.robots) > 1:
-            segments = np.vstack([segments] + [other.outline() for other in self.robots
-                                               if other is not robot])
+            index = 4 * self.robots.index(robot)
+            outlines = self.outlines()
+            segments = np.concatenate([segments, outlines[:index], outlines[index + 4:]])
         return segments, self.world.circles
 
     def _obstacles_once(self, robot):
@@ -280,13 +320,27 @@ class Simulation:
         is also logged as a warning)."""
         if self.command_timeout > 0:
             self._stop_silent_robots()
-        if self.robots_see_each_other and len(self.robots) > 1:
-            # What the others may travel comes out of each robot's free travel too.
+        began = []
+        if dt > 0:
             travels = [sweep(robot, dt) for robot in self.robots]
-            for robot, travel in zip(self.robots, travels):
-                robot.free_travel -= sum(travels) - travel
-        began = [robot for robot in self.robots
-                 if step_robot(robot, dt, self._obstacles_once(robot))]
+            if self.robots_see_each_other and len(self.robots) > 1:
+                # What the others may travel comes out of each robot's free travel too.
+                total = sum(travels)
+                for robot, travel in zip(self.robots, travels):
+                    robot.free_travel -= total - travel
+            # The robots whose step needs no overlap test move first, together (when they are
+            # enough to gain by it); then the others one by one, each tested against where
+            # everyone else is by then.
+            free = [travel <= robot.free_travel or not travel
+                    for robot, travel in zip(self.robots, travels)]
+            if sum(free) >= TOGETHER:
+                step_free_robots(*zip(*[(robot, travel) for robot, travel, is_free
+                                        in zip(self.robots, travels, free) if is_free]),
+                                 dt, self.obstacles_for)
+            else:
+                free = [False] * len(self.robots)
+            began = [robot for robot, is_free in zip(self.robots, free)
+                     if not is_free and step_robot(robot, dt, self._obstacles_once(robot))]
         self.time += dt
         for robot in began:
             self.log.warning('%s: collision at x %.3f y %.3f yaw %.3f: the body touches an '
@@ -306,7 +360,24 @@ class Simulation:
 
     def scan(self, robot):
         """A laser scan of `robot` now (ranges array), also kept as robot.last_scan."""
-        laser_x, laser_y, laser_yaw = robot.laser_pose()
-        ranges = robot.laser.scan(laser_x, laser_y, laser_yaw, *self.obstacles_for(robot))
-        robot.last_scan = (laser_x, laser_y, laser_yaw, ranges)
-        return ranges
+        return self.scans([robot])[0]
+
+    def scans(self, robots=None):
+        """A laser scan of each of `robots` (default: all) now, cast together: a list of ranges
+        arrays, each also kept as its robot's last_scan."""
+        robots = self.robots if robots is None else list(robots)
+        poses = [robot.laser_pose() for robot in robots]
+        segments, owners = self.world.segments, None
+        if self.robots_see_each_other and len(self.robots) > 1:
+            # Every body is an obstacle, except to its own laser.
+            segments = np.concatenate([segments, self.outlines()])
+            scanned = np.full(len(self.robots) + 1, -1)
+            for index, robot in enumerate(robots):
+                scanned[self.robots.index(robot)] = index
+            owners = np.concatenate([np.full(len(self.world.segments), -1),
+                                     np.repeat(scanned[:-1], 4)])
+        scans = scan_all([robot.laser for robot in robots], poses, segments, self.world.circles,
+                         owners)
+        for robot, pose, ranges in zip(robots, poses, scans):
+            robot.last_scan = pose + (ranges,)
+        return scans
