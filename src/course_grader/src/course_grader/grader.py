@@ -6,7 +6,6 @@ import os
 import pwd
 import resource
 import shutil
-import signal
 import subprocess
 import sys
 import tarfile
@@ -19,6 +18,7 @@ from concurrent.futures import ThreadPoolExecutor
 from course_grader import feedback, gradescope, reports, results, rubric as rubrics
 from course_grader.submission import SubmissionError, ascii_name, find_package, student_of, unpack
 from course_testing import processes
+from course_testing.process_table import stop_marked
 
 MARKER = '.course_grader'            # in --out: the folder is the grader's (it may empty it)
 RUN_MARK = 'COURSE_GRADER_RUN'       # in the environment of everything a --no-container session starts
@@ -122,39 +122,6 @@ def unpack_output(stream_bytes, staging):
                         shutil.copyfileobj(archive.extractfile(member), target)
     except tarfile.TarError:
         pass   # the session broke down before it sent its folder: no result, the reason says why
-
-
-def marked_processes(mark):
-    """The ids of the processes whose environment carries `mark` (NAME=value)."""
-    needle = mark.encode()
-    found = []
-    for pid in (int(name) for name in os.listdir('/proc') if name.isdigit()):
-        try:
-            with open('/proc/%d/environ' % pid, 'rb') as stream:
-                if needle in stream.read().split(b'\0'):
-                    found.append(pid)
-        except OSError:
-            continue
-    return found
-
-
-def stop_marked(mark):
-    """SIGKILL every process whose environment carries `mark`: what a --no-container session
-    started, even in sessions of its own or reparented to init (roslaunch's nodes are). Again
-    until none is left (one may fork meanwhile). Returns how many were stopped."""
-    stopped = 0
-    for _ in range(20):
-        found = marked_processes(mark)
-        for pid in found:
-            try:
-                os.kill(pid, signal.SIGKILL)
-            except (ProcessLookupError, PermissionError):
-                pass
-        stopped += len(found)
-        if not found:
-            break
-        time.sleep(0.1)
-    return stopped
 
 
 def _limit_resources():

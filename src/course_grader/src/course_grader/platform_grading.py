@@ -22,6 +22,7 @@ from course_grader.check import print_result
 from course_grader.grader import Grader, _limit_resources
 from course_grader.submission import (MAX_UNPACKED_BYTES, SubmissionError, check_folder, find_package, unpack,
                                       upload_inside)
+from course_testing.process_table import stop_processes, user_processes
 
 
 def is_empty(folder):
@@ -62,33 +63,6 @@ def stage(folder, rubric, staging):
     return find_package(staging, rubric.package)
 
 
-def user_processes(uid):
-    """The ids of the live processes (not zombies) of the user `uid` (none where /proc is not
-    mounted: in the chroot of Gradescope's image the container's end stops them)."""
-    found = []
-    for pid in (int(name) for name in os.listdir('/proc') if name.isdigit()) if os.path.isdir('/proc') else ():
-        try:
-            with open('/proc/%d/status' % pid) as stream:
-                fields = dict(line.split(':', 1) for line in stream if ':' in line)
-        except OSError:
-            continue
-        if str(uid) in fields.get('Uid', '').split() and not fields.get('State', '').strip().startswith('Z'):
-            found.append(pid)
-    return found
-
-
-def stop_user(uid):
-    """SIGKILL every process of the user `uid` (the student's side), again until none is left."""
-    for _ in range(50):
-        found = [pid for pid in user_processes(uid) if pid != os.getpid()]
-        if not found:
-            return
-        for pid in found:
-            with contextlib.suppress(ProcessLookupError, PermissionError):
-                os.kill(pid, signal.SIGKILL)
-        time.sleep(0.1)
-
-
 def wall_limit(rubric):
     """./grade.sh's: beyond it the grading is stopped."""
     return Grader(argparse.Namespace(out='.'), rubric).wall_limit
@@ -127,7 +101,8 @@ def grade_folder(rubric, folder, student, work, student_user='student'):
             with contextlib.suppress(ProcessLookupError):
                 os.killpg(process.pid, signal.SIGKILL)
             process.wait()
-            stop_user(pwd.getpwnam(student_user).pw_uid)
+            uid = pwd.getpwnam(student_user).pw_uid
+            stop_processes(lambda: user_processes(uid))
     result = results.read(rubric, student, out) or results.failed(
         rubric, student, reason or 'the grading stopped without a result: %s' % feedback.log_tail(log, 5))
     result['seconds'] = time.monotonic() - started
