@@ -149,6 +149,16 @@ def test_a_rostest_that_leaves_a_process_running_fails_the_run_and_the_process_i
     assert not command_line(pid).endswith(' sleep 600')   # killed
 
 
+def test_each_test_file_of_tests_student_is_a_slow_step_of_its_own(workspace):
+    for name in ('test_one.py', 'test_two.py'):
+        write(str(workspace / 'tests/student' / name), PASSING_TESTS)
+    write(str(workspace / 'tests/student/helpers.py'), 'HELP = 1\n')
+    code, output = run_test_command(workspace)
+    assert (code, last_line(output)) == (0, '9 passed, 0 failed'), output
+    steps = [line.split()[2] for line in output.splitlines() if line.startswith('test: pytest tests/student')]
+    assert sorted(steps) == ['tests/student/test_one.py', 'tests/student/test_two.py'], output
+
+
 def test_a_workspace_without_packages_is_a_failure_not_an_empty_pass(workspace):
     shutil.rmtree(str(workspace / 'src'))
     (workspace / 'src').mkdir()
