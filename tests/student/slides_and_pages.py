@@ -89,3 +89,15 @@ def check(student, lab, *options):
     assert output.rstrip().endswith("check: This is your own check: the teacher's run, in a container, "
                                     "is the one that counts."), output[-500:]
     return output
+
+
+def full_marks_then_checked(student, lab, full, criterion):
+    """The teacher's grading gives full marks; then the student's check of one criterion (the
+    grading has just proved the others) passes it. Returns what the check printed."""
+    score, most, row, output = grade(student, lab)
+    assert (score, most) == (full, full), (row, output[-2000:])
+    output = check(student, lab, '--only', criterion)
+    assert re.findall(r'^(PASS|FAIL) (\S+)', output, re.M) == [('PASS', criterion)], output[-2000:]
+    assert re.search(r'^check: %s (\d+) / \1, the other criteria not checked \(\d+ s\)$' % criterion, output,
+                     re.M), output
+    return output
