@@ -76,8 +76,10 @@ for pkg in "${packages[@]}"; do
 done
 
 # The workspace's own tests (tests/), when no package is named: the quick ones here, the slow ones
-# (minutes each) among the slow steps below.
+# (minutes each) among the slow steps below, a step each; each test file of a folder in
+# SPLIT_WORKSPACE_TESTS is a step of its own (tests/student/: a student per file, one lab each).
 SLOW_WORKSPACE_TESTS=(network student test_tour.py)
+SPLIT_WORKSPACE_TESTS=(student)
 if [ $# -eq 0 ] && [ -d "$ROOT/tests" ]; then
     args=()
     for part in "${SLOW_WORKSPACE_TESTS[@]}"; do args+=(--ignore="$ROOT/tests/$part"); done
@@ -108,9 +110,19 @@ add_job() {
     { printf '%s\t%s\t%s\t' "$1" "$2" "$sharing"; shift 2; printf '%q ' "$@"; echo; } >> "$jobs_file"
 }
 if [ $# -eq 0 ]; then
+    steps=()
     for part in "${SLOW_WORKSPACE_TESTS[@]}"; do
         [ -e "$ROOT/tests/$part" ] || continue
-        name="workspace-${part%.py}"
+        split=no
+        for folder in "${SPLIT_WORKSPACE_TESTS[@]}"; do [ "$part" = "$folder" ] && split=yes; done
+        if [ "$split" = yes ]; then
+            for file in "$ROOT/tests/$part"/test_*.py; do [ -e "$file" ] && steps+=("$part/${file##*/}"); done
+        else
+            steps+=("$part")
+        fi
+    done
+    for part in "${steps[@]}"; do
+        name="workspace-$(echo "${part%.py}" | tr / -)"
         args=()
         if [ "$part" = network ] && [ "$(id -u)" != 0 ] && [ -e "$ROOT/tests/network/test_two_hosts.py" ]; then
             # Two network namespaces need CAP_NET_ADMIN: this test runs where the tests run as root

@@ -35,6 +35,7 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 
 from course_testing.browser import start_browser
+from course_testing.process_table import descendants
 from course_testing.processes import free_port, port_open, stop_process_group
 from course_testing.waiting import wait_until
 from turtlesim.msg import Pose
@@ -49,25 +50,6 @@ def cpu_seconds(pid):
     with open('/proc/%d/stat' % pid) as stat:
         fields = stat.read().rsplit(')', 1)[1].split()
     return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
-
-
-def descendants(pid):
-    """pid and every process under it (chromium's renderers and helpers)."""
-    children = {}
-    for entry in os.listdir('/proc'):
-        if entry.isdigit():
-            try:
-                with open('/proc/%s/stat' % entry) as stat:
-                    parent = int(stat.read().rsplit(')', 1)[1].split()[1])
-            except OSError:
-                continue
-            children.setdefault(parent, []).append(int(entry))
-    found, todo = [], [pid]
-    while todo:
-        current = todo.pop()
-        found.append(current)
-        todo.extend(children.get(current, []))
-    return found
 
 
 def cpu_of(pids):
@@ -187,7 +169,8 @@ class Run:
         groups = {'turtlesim': '/turtlesim', 'fake_tb3': '/fake_tb3', 'view': '/course_web'}
         groups = {what: [node_pid(name)] for what, name in groups.items() if node_running(name)}
         if self.browser is not None:
-            groups['chromium'] = descendants(self.browser.service.process.pid)
+            browser = self.browser.service.process.pid
+            groups['chromium'] = [browser] + descendants(browser)
         samples = {what: [] for what in groups}
         for _ in range(self.bench.repeat):
             before, start = {what: cpu_of(pids) for what, pids in groups.items()}, time.monotonic()

@@ -12,6 +12,7 @@ import subprocess
 
 import pytest
 
+from course_testing.process_table import command_line
 from course_testing.processes import ignored_signals
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -79,7 +80,8 @@ def add_package(ws, folder, name, unit_files, rostests=()):
 
 
 def run_test_command(ws, *packages):
-    env = {'PATH': str(ws.parent / 'bin'), 'HOME': str(ws.parent)}
+    # PYTHONPATH: the course's packages, which tools/env.sh gives test.sh after the build.
+    env = {'PATH': str(ws.parent / 'bin'), 'HOME': str(ws.parent), 'PYTHONPATH': os.environ['PYTHONPATH']}
     result = subprocess.run([str(ws / 'test.sh')] + list(packages), env=env, stdin=subprocess.DEVNULL,
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
                             timeout=120)
@@ -131,6 +133,30 @@ def test_a_rostest_that_is_killed_fails_the_run_even_with_its_results_written(wo
     code, output = run_test_command(workspace, 'gamma')
     assert (code, last_line(output)) == (1, '3 passed, 1 failed'), output
     assert 'FAILED: rostest gamma/test/x.test (exit -9: its results cannot be trusted' in output
+
+
+def test_a_rostest_that_leaves_a_process_running_fails_the_run_and_the_process_is_stopped(workspace, tmp_path):
+    add_package(workspace, 'src/gamma', 'gamma', {'test_gamma.py': PASSING_TESTS}, rostests=['test/x.test'])
+    pid_file = tmp_path / 'left.pid'
+    # As a roslaunch node: a session of its own, reparented to init when the test ends.
+    write(str(workspace / 'tools/fake_bin/rostest'),
+          GOOD_ROSTEST + 'setsid -f bash -c \'echo $$ > %s; exec sleep 600\'\n' % pid_file, 0o755)
+    code, output = run_test_command(workspace, 'gamma')
+    pid = int(pid_file.read_text())
+    assert (code, last_line(output)) == (1, '3 passed, 1 failed'), output
+    assert 'left running: %d sleep 600' % pid in output
+    assert 'FAILED: rostest gamma/test/x.test left 1 process running (killed now): %d sleep 600' % pid in output
+    assert not command_line(pid).endswith(' sleep 600')   # killed
+
+
+def test_each_test_file_of_tests_student_is_a_slow_step_of_its_own(workspace):
+    for name in ('test_one.py', 'test_two.py'):
+        write(str(workspace / 'tests/student' / name), PASSING_TESTS)
+    write(str(workspace / 'tests/student/helpers.py'), 'HELP = 1\n')
+    code, output = run_test_command(workspace)
+    assert (code, last_line(output)) == (0, '9 passed, 0 failed'), output
+    steps = [line.split()[2] for line in output.splitlines() if line.startswith('test: pytest tests/student')]
+    assert sorted(steps) == ['tests/student/test_one.py', 'tests/student/test_two.py'], output
 
 
 def test_a_workspace_without_packages_is_a_failure_not_an_empty_pass(workspace):

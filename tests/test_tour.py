@@ -1,26 +1,63 @@
 """The README's demo: the tour runs every lab, summarises it, and writes real pictures."""
 import os
 import re
+import signal
 import subprocess
 
 import numpy
 import pytest
 from PIL import Image
 
+from course_testing.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
 from course_testing.screen import red_pixels
+from course_testing.waiting import wait_until
 
 TURTLESIM_BACKGROUND = (69, 86, 255)
 PEN = (179, 184, 255)
 RVIZ_ROBOT_BODY = (191, 191, 191)  # fake_tb3's URDF 'light' material, lit from above
 
 
+def left_running(mark):
+    """The command lines of what still runs with `mark` in its environment; stops them."""
+    left = [command_line(pid) for pid in marked_processes(mark)]
+    stop_marked(mark)
+    return left
+
+
 @pytest.fixture(scope='module')
 def tour(tmp_path_factory):
+    """The tour's result, its folder, and what it started that still runs once it has ended."""
     output = tmp_path_factory.mktemp('tour')
-    result = subprocess.run(['rosrun', 'course_tour', 'tour', '--output', str(output)],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                            universal_newlines=True, timeout=900)
-    return result, output
+    mark = new_mark('COURSE_TOUR_TEST')
+    try:
+        result = subprocess.run(['rosrun', 'course_tour', 'tour', '--output', str(output)],
+                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                universal_newlines=True, timeout=900, env=with_mark(mark))
+    finally:
+        left = left_running(mark)
+    return result, output, left
+
+
+def test_nothing_the_tour_started_runs_after_it(tour):
+    # roscore, the simulators, the course nodes (roslaunch's, in sessions of their own), Xvfb, rviz.
+    assert tour[2] == []
+
+
+def test_the_tour_killed_in_a_lab_stops_what_it_started(tmp_path):
+    mark = new_mark('COURSE_TOUR_TEST')
+    tour = subprocess.Popen(['rosrun', 'course_tour', 'tour', 'square', '--output', str(tmp_path)],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                            env=with_mark(mark))
+    try:
+        wait_until(lambda: any('turtlesim' in command_line(pid) for pid in marked_processes(mark)), 60,
+                   'the square lab to start turtlesim')
+        tour.terminate()
+        output = tour.communicate(timeout=60)[0]
+    finally:
+        tour.kill()
+        left = left_running(mark)
+    assert left == []
+    assert tour.returncode == 128 + signal.SIGTERM, output
 
 
 def picture(output, name):
@@ -33,7 +70,7 @@ def pixels_of(image, colour):
 
 
 def test_every_lab_ran_and_the_tour_says_where_its_pictures_are(tour):
-    result, output = tour
+    result, output, _ = tour
     assert result.returncode == 0, result.stdout
     for number, lab in enumerate(['square', 'turtle', 'teleop', 'report', 'laser', 'avoid', 'rviz'], 1):
         assert re.search(r'^\[%d/7\] %s: .* \.\.\.$' % (number, lab), result.stdout, re.M)

@@ -16,15 +16,20 @@ lines of its log that say why. Each job's whole output goes to DIR/<label>.log. 
 kept in FILE, so that the next run starts the longest jobs first (on a first run, those of
 --first-times, measured once on a 2-core machine; jobs unknown to both come first). A job that ends
 with any other exit status is written to --failed-steps, one per line: its results are not to be
-trusted (pytest exit 5: it collected no tests).
+trusted (pytest exit 5: it collected no tests). So is a job that leaves processes running: each job's
+environment carries a mark of its own, and what still carries it a few seconds after the job ended
+(a node in a session of its own, reparented to init, that no process group reaches) is named, then
+killed.
 """
 import argparse
 import os
 import re
-import signal
 import subprocess
 import sys
 import time
+
+from course_testing.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
+from course_testing.processes import restore_ctrl_c
 
 # The lines of a rostest or pytest log that say what failed.
 WHY = re.compile(r'RESULT: FAIL|\[FAILURE\]|\[ERROR\] \[Testcase|^FAILED |^ERROR |Error:|'
@@ -97,14 +102,15 @@ class SideBySide:
         return idle_cores(before[1], self.since[1], self.cores) >= 1.0
 
 
-def default_ctrl_c():
-    """In a job, before it starts: SIGINT and SIGQUIT as in a terminal. When test.sh runs in the
-    background (`./test.sh &`, nohup in a script, a CI runner), its shell ignores both and every
-    program inherits that: the tests stop roscore and roslaunch with SIGINT, which they then ignore
-    until the test's timeout kills them (tests/network/ took 181 s instead of 90). The same as
-    course_testing.processes.restore_ctrl_c, which this file cannot import (it runs without ROS)."""
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-    signal.signal(signal.SIGQUIT, signal.SIG_DFL)
+def left_running(mark, grace=5.0):
+    """What still runs with `mark` in its environment once `grace` seconds have passed (a node may
+    still be saving its picture as its roslaunch ends), as command lines; then stops it."""
+    deadline = time.monotonic() + grace
+    while marked_processes(mark) and time.monotonic() < deadline:
+        time.sleep(0.2)
+    left = [command_line(pid) for pid in marked_processes(mark)]
+    stop_marked(mark)
+    return left
 
 
 def log_name(folder, label):
@@ -137,9 +143,13 @@ def main():
                 break
             label, codes, alone, command = waiting.pop(0)
             log = open(log_name(options.logs, label), 'w')
+            mark = new_mark('COURSE_TEST_STEP')
+            # SIGINT and SIGQUIT as in a terminal: when test.sh runs in the background (`./test.sh &`,
+            # a CI runner), every program inherits both ignored, and the tests' roscore and roslaunch
+            # would ignore the SIGINT that stops them (tests/network/ took 181 s instead of 90).
             process = subprocess.Popen(['bash', '-c', command], stdout=log, stderr=subprocess.STDOUT,
-                                       stdin=subprocess.DEVNULL, preexec_fn=default_ctrl_c)
-            running[process.pid] = (process, label, codes, alone, log, time.monotonic())
+                                       stdin=subprocess.DEVNULL, env=with_mark(mark), preexec_fn=restore_ctrl_c)
+            running[process.pid] = (process, label, codes, alone, log, time.monotonic(), mark)
             side_by_side.started()
             widest = max(widest, len(running))
         # With jobs waiting for an idle core, look again every half second.
@@ -149,11 +159,12 @@ def main():
             continue
         if pid not in running:
             continue
-        process, label, codes, _, log, start = running.pop(pid)
+        process, label, codes, _, log, start, mark = running.pop(pid)
         log.close()
         code = os.waitstatus_to_exitcode(status) if hasattr(os, 'waitstatus_to_exitcode') else status >> 8
         process.returncode = code
         seconds = time.monotonic() - start
+        left = left_running(mark)
         times[label] = seconds
         print('test: %s  (%.0f s%s)' % (label, seconds, '' if code == 0 else ', exit %d' % code),
               flush=True)
@@ -166,6 +177,11 @@ def main():
         if code not in codes:
             failed_steps.append('%s (exit %d: its results cannot be trusted; log %s)'
                                 % (label, code, log_name(options.logs, label)))
+        if left:
+            for line in left:
+                print('      left running: ' + line[:300])
+            failed_steps.append('%s left %d process%s running (killed now): %s'
+                                % (label, len(left), '' if len(left) == 1 else 'es', '; '.join(left)[:1000]))
     print('test: at most %d steps ran side by side' % widest, flush=True)
     with open(options.failed_steps, 'w') as out:
         out.writelines(step + '\n' for step in failed_steps)

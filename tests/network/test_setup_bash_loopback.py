@@ -8,7 +8,8 @@ import subprocess
 
 import pytest
 
-from course_testing.network.rosnet import ROOT, descendants, is_loopback, listening_sockets, node_api, start_master
+from course_testing.network.rosnet import ROOT, is_loopback, listening_sockets, node_api, start_master
+from course_testing.process_table import descendants
 from course_testing.processes import free_port
 from course_testing.waiting import wait_until
 

@@ -114,15 +114,6 @@ def new_student():
     return someone, made.stdout
 
 
-@pytest.fixture(scope='module')
-def student():
-    someone, printed = new_student()
-    assert 'source %s/devel/setup.bash' % someone.workspace in printed
-    yield someone
-    someone.stop_all()
-    shutil.rmtree(someone.home)
-
-
 def test_the_new_workspace_gives_the_course_environment(student):
     status, output = student.run('command -v python; python -c "import rospy; print(rospy.__file__)"; '
                                  'echo "$ROS_HOSTNAME|$LD_PRELOAD"; rospack find turtlesim')

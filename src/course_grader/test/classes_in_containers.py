@@ -10,14 +10,23 @@ import zipfile
 
 import pytest
 
+from course_testing.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
 from example_class import EXAMPLES, ROOT, expected, labs, make_class, mismatches, outscored_twins, read_results
 
 
 def grade(lab, submissions, out, *options):
-    result = subprocess.run([os.path.join(ROOT, 'grade.sh'), lab] + submissions + ['--out', out] + list(options),
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
-                            stdin=subprocess.DEVNULL)
+    """./grade.sh's result; once it has ended, nothing it started runs (its `docker run` clients
+    included: they carry the mark of its environment)."""
+    mark = new_mark('COURSE_GRADER_TEST')
+    try:
+        result = subprocess.run([os.path.join(ROOT, 'grade.sh'), lab] + submissions + ['--out', out] + list(options),
+                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                                stdin=subprocess.DEVNULL, env=with_mark(mark))
+    finally:
+        left = [command_line(pid) for pid in marked_processes(mark)]
+        stop_marked(mark)
     print(result.stdout)
+    assert left == []
     return result
 
 

@@ -2,21 +2,16 @@
 """grade --no-container on the trusted examples of the example classes (no hostile one): scores and
 sentences as expected.yaml says, and nothing the grading started still running afterwards."""
 import os
-import shutil
+import signal
 import subprocess
 import tempfile
 import unittest
-import uuid
 
 import rostest
 
-from course_grader.grader import marked_processes
-from example_class import ROOT, expected, labs, make_class, mismatches, read_results
-
-# What grading the move_turtlebot3 lab needs from the workspace: the grader, its checks, the
-# simulators and the packages whose environment hooks every course shell has.
-INSTALLED = ['course_checks', 'course_common', 'course_environment', 'course_grader', 'course_testing', 'fake_tb3',
-             'ros_loopback', 'turtlesim']
+from course_testing.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
+from course_testing.waiting import wait_until
+from example_class import EXAMPLES, expected, labs, make_class, mismatches, read_results
 
 # Quick ones, and each kind of outcome: full marks, the slides as printed, a build failure.
 TRUSTED = {'move_turtlebot3': ['model', 'slides_as_printed', 'cmake_error'], 'my_turtle': ['slides_as_printed'],
@@ -26,20 +21,13 @@ TRUSTED = {'move_turtlebot3': ['model', 'slides_as_printed', 'cmake_error'], 'my
 def tagged_processes(tag):
     """The command lines of the processes whose environment carries tag (all that a command given
     it started)."""
-    found = []
-    for pid in marked_processes(tag):
-        try:
-            with open('/proc/%d/cmdline' % pid, 'rb') as command:
-                found.append('%d %s' % (pid, command.read().replace(b'\0', b' ').decode(errors='replace')))
-        except OSError:
-            pass
-    return found
+    return [command_line(pid) for pid in marked_processes(tag)]
 
 
 class GradeExamplesTest(unittest.TestCase):
 
     def test_trusted_examples_without_containers(self):
-        tag = 'COURSE_GRADER_TEST=%s' % uuid.uuid4().hex
+        tag = new_mark('COURSE_GRADER_TEST')
         for lab in labs():
             students = [s for s in TRUSTED.get(lab, []) if s in expected(lab)]
             with tempfile.TemporaryDirectory() as folder:
@@ -48,7 +36,7 @@ class GradeExamplesTest(unittest.TestCase):
                 result = subprocess.run(['rosrun', 'course_grader', 'grade', lab, '--no-container', '--jobs', '2',
                                          '--out', out] + [submissions[s] for s in students],
                                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
-                                        stdin=subprocess.DEVNULL, env=dict(os.environ, **dict([tag.split('=')])))
+                                        stdin=subprocess.DEVNULL, env=with_mark(tag))
                 print(result.stdout)
                 self.assertEqual(result.returncode, 0, result.stdout)
                 self.assertTrue(result.stdout.startswith('grade: --no-container: NOTHING IS ISOLATED'))
@@ -59,59 +47,26 @@ class GradeExamplesTest(unittest.TestCase):
                 # run in sessions of their own, which no process group reaches).
                 self.assertEqual(tagged_processes(tag), [])
 
-    def test_the_grader_runs_from_an_install_space(self):
-        with tempfile.TemporaryDirectory() as folder:
-            build = subprocess.run(['catkin_make', '--source', os.path.join(ROOT, 'src'), '--build',
-                                    os.path.join(folder, 'build'), '-DCATKIN_DEVEL_PREFIX=%s/devel' % folder,
-                                    '-DCMAKE_INSTALL_PREFIX=%s/install' % folder, '-DPYTHON_EXECUTABLE=/usr/bin/python3',
-                                    '-DCATKIN_WHITELIST_PACKAGES=%s' % ';'.join(INSTALLED), 'install'],
-                                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
-                                   stdin=subprocess.DEVNULL)
-            self.assertEqual(build.returncode, 0, build.stdout[-3000:])
-            student = make_class('move_turtlebot3', os.path.join(folder, 'class'))['model']
-            out = os.path.join(folder, 'grades')
-            # A shell with the install space only: no source tree, no devel space on any path.
-            result = subprocess.run(['bash', '-c', 'source "$1/install/setup.bash" && cd / && rosrun course_grader grade --help '
-                                     '| grep "rubrics in" && rosrun course_grader grade move_turtlebot3 "$2" '
-                                     '--no-container --out "$3"', 'grade', folder, student, out],
-                                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
-                                    stdin=subprocess.DEVNULL, env={'HOME': folder, 'PATH': '/usr/bin:/bin'})
-            print(result.stdout)
-            self.assertEqual(result.returncode, 0, result.stdout)
-            rows, details = read_results(out)
-            self.assertEqual(rows['model']['score'], '14', details['model'])
-            self.assertIn('(rubrics in %s/install/share/course_grader/rubrics)' % folder, result.stdout)
-
-    def test_a_moodle_download_graded_as_it_is_then_regraded(self):
-        """The folder Moodle's "download all" gives, a zip inside, graded twice into one --out: the
-        name as Moodle wrote it and its id in the reports, then what changed since the first run."""
-        with tempfile.TemporaryDirectory() as folder:
-            students = make_class('move_turtlebot3', os.path.join(folder, 'class'))
-            moodle = os.path.join(folder, 'moodle', 'José Núñez_4711_assignsubmission_file_')
-            os.makedirs(moodle)
-            out = os.path.join(folder, 'grades')
-
-            def grade(package):
-                shutil.make_archive(os.path.join(moodle, 'catkin_ws'), 'zip', package)
-                run = subprocess.run(['rosrun', 'course_grader', 'grade', 'move_turtlebot3', moodle, '--no-container',
-                                      '--out', out], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                     universal_newlines=True, stdin=subprocess.DEVNULL)
-                print(run.stdout)
-                self.assertEqual(run.returncode, 0, run.stdout)
-                os.remove(os.path.join(moodle, 'catkin_ws.zip'))
-                return run.stdout
-
-            first = grade(students['into_the_wall'])
-            self.assertIn('grade: [1/1] José Núñez (4711): 9 / 14', first)
-            rows, details = read_results(out)
-            self.assertEqual((rows['José Núñez']['id'], rows['José Núñez']['score']), ('4711', '9'))
-            self.assertTrue(os.path.isdir(os.path.join(out, 'José_Núñez_4711')))
-            second = grade(students['model'])
-            self.assertRegex(second, r'grade: \[1/1\] José Núñez \(4711\): 14 / 14 \(\d+ s\); before 9 / 14: '
-                                     r'avoid_stops 0 -> 3, avoid_stays 0 -> 2\n')
-            with open(os.path.join(out, 'report.html'), encoding='utf-8') as page:
-                self.assertIn('The earlier grading into this folder gave 9 / 14; changed since: avoid_stops 0 → 3, '
-                              'avoid_stays 0 → 2.', page.read())
+    def test_a_check_stopped_by_sigterm_leaves_nothing_running(self):
+        # A student closes the terminal, or kills the check, while roscore and fake_tb3 run: the
+        # session, in a session of its own, would go on without it.
+        tag = new_mark('COURSE_GRADER_TEST')
+        check = subprocess.Popen(['rosrun', 'course_grader', 'check', 'move_turtlebot3',
+                                  os.path.join(EXAMPLES, 'move_turtlebot3', 'model'), '--only', 'avoid_stops'],
+                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                                 stdin=subprocess.DEVNULL, env=with_mark(tag))
+        try:
+            wait_until(lambda: any('fake_tb3' in line for line in tagged_processes(tag)), 120,
+                       'the check to start fake_tb3')
+            check.terminate()
+            output = check.communicate(timeout=60)[0]
+            left = tagged_processes(tag)
+        finally:
+            check.kill()
+            stop_marked(tag)
+        print(output)
+        self.assertEqual(left, [])
+        self.assertEqual(check.returncode, 128 + signal.SIGTERM, output)
 
 
 if __name__ == '__main__':

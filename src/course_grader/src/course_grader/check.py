@@ -10,6 +10,7 @@ import time
 from course_grader import rubric as rubrics
 from course_grader.grader import Grader
 from course_grader.submission import package_name
+from course_testing.processes import exit_on_terminate
 
 COUNTS = ('This is your own check: the teacher\'s run, in a container, is the one that counts.')
 
@@ -87,6 +88,8 @@ def main(argv=None):
     except (CheckError, rubrics.RubricError) as error:
         print('check: %s' % error, file=sys.stderr)
         return 2
+    # Closing the terminal or `kill` stops the check as Ctrl-C does: with all it started.
+    exit_on_terminate()
     out = tempfile.mkdtemp(prefix='course-check-%s-' % args.lab)
     print('check: grading the package at %s with the rubric of %s, on this machine%s'
           % (folder, args.lab, ', the criterion %s only' % args.only if args.only else ''), flush=True)

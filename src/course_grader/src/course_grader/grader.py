@@ -6,7 +6,6 @@ import os
 import pwd
 import resource
 import shutil
-import signal
 import subprocess
 import sys
 import tarfile
@@ -19,6 +18,7 @@ from concurrent.futures import ThreadPoolExecutor
 from course_grader import feedback, gradescope, reports, results, rubric as rubrics
 from course_grader.submission import SubmissionError, ascii_name, find_package, student_of, unpack
 from course_testing import processes
+from course_testing.process_table import stop_marked
 
 MARKER = '.course_grader'            # in --out: the folder is the grader's (it may empty it)
 RUN_MARK = 'COURSE_GRADER_RUN'       # in the environment of everything a --no-container session starts
@@ -131,64 +131,6 @@ def _read_at_most(pipe, kept, limit):
         kept += chunk[:max(0, limit - len(kept))]
 
 
-def marked_processes(mark):
-    """The ids of the processes whose environment carries `mark` (NAME=value)."""
-    needle = mark.encode()
-    found = []
-    for pid in (int(name) for name in os.listdir('/proc') if name.isdigit()):
-        try:
-            with open('/proc/%d/environ' % pid, 'rb') as stream:
-                if needle in stream.read().split(b'\0'):
-                    found.append(pid)
-        except OSError:
-            continue
-    return found
-
-
-def user_processes(uid):
-    """The ids of the live processes (not zombies) of the user `uid` (none where /proc is not
-    mounted: in the chroot of Gradescope's image the container's end stops them)."""
-    found = []
-    for pid in (int(name) for name in os.listdir('/proc') if name.isdigit()) if os.path.isdir('/proc') else ():
-        try:
-            with open('/proc/%d/status' % pid) as stream:
-                fields = dict(line.split(':', 1) for line in stream if ':' in line)
-        except OSError:
-            continue
-        if str(uid) in fields.get('Uid', '').split() and not fields.get('State', '').strip().startswith('Z'):
-            found.append(pid)
-    return found
-
-
-def stop_found(find):
-    """SIGKILL every process whose id find() lists (never ours), again until none is left (one
-    may fork meanwhile). Returns how many were stopped."""
-    stopped = 0
-    for _ in range(50):
-        found = [pid for pid in find() if pid != os.getpid()]
-        for pid in found:
-            try:
-                os.kill(pid, signal.SIGKILL)
-            except (ProcessLookupError, PermissionError):
-                pass
-        stopped += len(found)
-        if not found:
-            break
-        time.sleep(0.1)
-    return stopped
-
-
-def stop_marked(mark):
-    """Every process whose environment carries `mark`: what a --no-container session started, even
-    in sessions of its own or reparented to init (roslaunch's nodes are)."""
-    return stop_found(lambda: marked_processes(mark))
-
-
-def stop_user(uid):
-    """Every process of the user `uid` (the student's side in a sandbox)."""
-    return stop_found(lambda: user_processes(uid))
-
-
 def _limit_resources():
     """In the --no-container child: CPU seconds, file size, address space, open files."""
     for limit, value in ((resource.RLIMIT_CPU, 900), (resource.RLIMIT_FSIZE, 100 * 2 ** 20),
@@ -297,6 +239,13 @@ class Grader:
 
         def stop(process):   # whatever happened: the container and everything in it are gone
             subprocess.run(['docker', 'rm', '-f', name], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            # rm -f answers at once while the engine is still removing it for --rm (seen under load):
+            # gone means the engine no longer knows the name.
+            deadline = time.monotonic() + 60
+            while time.monotonic() < deadline and subprocess.run(
+                    ['docker', 'container', 'inspect', name], stdout=subprocess.DEVNULL,
+                    stderr=subprocess.DEVNULL).returncode == 0:
+                time.sleep(0.2)
             if process.poll() is None:
                 process.kill()
                 process.wait()

@@ -19,9 +19,10 @@ import uuid
 
 from course_grader import classroom, feedback, gradescope, results, rubric as rubrics
 from course_grader.check import print_result
-from course_grader.grader import Grader, _limit_resources, stop_user
+from course_grader.grader import Grader, _limit_resources
 from course_grader.submission import (MAX_UNPACKED_BYTES, SubmissionError, check_folder, find_package, unpack,
                                       upload_inside)
+from course_testing.process_table import stop_user
 
 
 def is_empty(folder):
@@ -100,7 +101,8 @@ def grade_folder(rubric, folder, student, work, student_user='student'):
             with contextlib.suppress(ProcessLookupError):
                 os.killpg(process.pid, signal.SIGKILL)
             process.wait()
-            stop_user(pwd.getpwnam(student_user).pw_uid)
+            uid = pwd.getpwnam(student_user).pw_uid
+            stop_user(uid)
     result = results.read(rubric, student, out) or results.failed(
         rubric, student, reason or 'the grading stopped without a result: %s' % feedback.log_tail(log, 5))
     result['seconds'] = time.monotonic() - started

@@ -2,14 +2,12 @@
 from a sandbox."""
 import io
 import os
-import subprocess
 import tarfile
-import time
+import subprocess
 
 import pytest
 
 from course_grader import grader
-from course_testing.waiting import wait_until
 
 
 def test_out_folder_new_then_replaced_and_a_foreign_one_refused(tmp_path):
@@ -46,34 +44,6 @@ def test_only_regular_files_come_back_from_a_sandbox_within_the_size_limit(tmp_p
     monkeypatch.setattr(grader, 'MAX_COPIED_BYTES', 1000)
     grader.copy_output(str(staging), str(folder))
     assert os.listdir(str(folder)) == ['build.log']
-
-
-def test_what_escaped_a_session_to_init_is_stopped_by_its_mark(tmp_path):
-    # As roslaunch's nodes: in a session of their own, reparented to init when their parent goes.
-    mark = 'COURSE_GRADER_RUN=test-%d' % os.getpid()
-    env = dict(os.environ, COURSE_GRADER_RUN=mark.split('=', 1)[1])
-    subprocess.run(['setsid', '-f', 'sleep', '600'], env=env, check=True)
-    subprocess.run(['setsid', '-f', 'bash', '-c', 'sleep 600 & sleep 600'], env=env, check=True)
-    try:
-        wait_until(lambda: len(grader.marked_processes(mark)) == 4, 10, 'the three sleeps and their bash')
-    finally:
-        assert grader.stop_marked(mark) == 4
-    assert grader.marked_processes(mark) == []
-
-
-def test_the_processes_of_a_user_are_found_but_not_the_dead_ones():
-    sleeper = subprocess.Popen(['sleep', '600'])
-    try:
-        assert sleeper.pid in grader.user_processes(os.getuid())
-        assert sleeper.pid not in grader.user_processes(os.getuid() + 1)
-    finally:
-        sleeper.kill()
-    # Killed, not yet waited for: a zombie (PID 1 of a container may never reap it) is not looked for.
-    deadline = time.monotonic() + 10
-    while sleeper.pid in grader.user_processes(os.getuid()) and time.monotonic() < deadline:
-        time.sleep(0.05)
-    assert sleeper.pid not in grader.user_processes(os.getuid())
-    sleeper.wait()
 
 
 def test_only_regular_files_of_the_trusted_sides_tar_stream_are_unpacked(tmp_path):

@@ -42,6 +42,17 @@ def restore_ctrl_c():
     signal.signal(signal.SIGQUIT, signal.SIG_DFL)
 
 
+def exit_on_terminate():
+    """SIGTERM (`kill`, a CI job cancelled, a test's timeout) and SIGHUP (the terminal closed)
+    raise SystemExit in the main thread, as Ctrl-C raises KeyboardInterrupt: the program's finally
+    and with blocks then stop what it started (by default both end Python at once, and roscore and
+    roslaunch, in sessions of their own, go on without it). Exit status 128 + the signal's number."""
+    def leave(number, _frame):
+        raise SystemExit(128 + number)
+    signal.signal(signal.SIGTERM, leave)
+    signal.signal(signal.SIGHUP, leave)
+
+
 def ignored_signals(status_text):
     """The signal numbers a /proc/PID/status text (its SigIgn line) says the process ignores."""
     mask = next(int(line.split()[1], 16) for line in status_text.splitlines() if line.startswith('SigIgn:'))

@@ -1,9 +1,12 @@
+import os
 import signal
 import socket
 import subprocess
 import sys
 
+from course_testing.process_table import command_line, user_processes
 from course_testing.processes import ReadPtyProgram, free_port, ignored_signals, port_open, run, stop_process_group
+from course_testing.waiting import wait_until
 
 TRAPS_SIGINT = '''
 import signal, sys, time
@@ -99,3 +102,38 @@ def test_a_read_program_that_prints_more_than_a_terminal_holds_does_not_block():
     assert program.process.wait(30) == 0
     assert program.stop() == 0
     assert program.output.rstrip().endswith('done')
+
+
+# A program that starts a child in a session of its own and stops it in a finally block.
+STOPS_ITS_CHILD_IN_FINALLY = '''
+import subprocess, sys, time
+from course_testing.processes import exit_on_terminate
+if sys.argv[1] == 'handled':
+    exit_on_terminate()
+child = subprocess.Popen(['sleep', '600'], start_new_session=True)
+try:
+    print(child.pid, flush=True)
+    time.sleep(600)
+finally:
+    child.kill()
+'''
+
+
+def test_on_sigterm_and_sighup_a_program_runs_its_finally_blocks():
+    for number in (signal.SIGTERM, signal.SIGHUP):
+        for handled in ('handled', 'default'):
+            program = subprocess.Popen([sys.executable, '-c', STOPS_ITS_CHILD_IN_FINALLY, handled],
+                                       stdout=subprocess.PIPE, universal_newlines=True)
+            child = int(program.stdout.readline())
+            program.send_signal(number)
+            code = program.wait(30)
+            try:
+                if handled == 'handled':
+                    assert code == 128 + number
+                    wait_until(lambda: child not in user_processes(os.getuid()), 10, 'the child to be stopped')
+                else:   # Python's default: the program ends at once, its child goes on
+                    assert code == -number
+                    assert command_line(child) == '%d sleep 600' % child
+            finally:
+                if handled == 'default':
+                    os.kill(child, signal.SIGKILL)

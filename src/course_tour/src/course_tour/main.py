@@ -9,7 +9,7 @@ import traceback
 
 from course_tour.labs import LABS
 from course_tour.session import Session
-from course_testing.processes import restore_ctrl_c
+from course_testing.processes import exit_on_terminate, restore_ctrl_c
 
 
 def parse_args(argv):
@@ -30,6 +30,7 @@ def parse_args(argv):
 def main(argv=None):
     args = parse_args(sys.argv[1:] if argv is None else argv)
     restore_ctrl_c()  # each lab is stopped with SIGINT, also when ./demo.sh runs in the background
+    exit_on_terminate()   # killed or its terminal closed: the session still stops what the labs started
     chosen = [lab for lab in LABS if not args.labs or lab.name in args.labs]
     output = args.output or os.path.join(
         os.getcwd(), 'output', 'tour-' + datetime.datetime.now().strftime('%Y%m%d-%H%M%S'))

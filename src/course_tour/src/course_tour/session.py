@@ -2,7 +2,10 @@
 
 The tour is one ROS node (`course_tour`) on its own master, on a free port, so that it never meets a
 master the user already runs. Each lab starts its launch files here and stops them with SIGINT, as
-Ctrl-C in a terminal would, so the simulators save their pictures at shutdown.
+Ctrl-C in a terminal would, so the simulators save their pictures at shutdown. roslaunch starts each
+node in a session of its own, out of reach of the launch's process group: each launch, and the
+tour as a whole, marks the environment of what it starts, and what still carries the mark once
+it has been stopped is killed (course_testing.process_table).
 """
 import os
 import subprocess
@@ -10,6 +13,7 @@ import subprocess
 import rosgraph
 import rospy
 
+from course_testing.process_table import new_mark, stop_marked, with_mark
 from course_testing.processes import free_port, stop_process_group
 from course_testing.waiting import wait_until
 
@@ -24,16 +28,21 @@ class Launched:
         self.params_before = set(params_before)
         self.log_path = log_path
         self._log = open(log_path, 'w')
+        self.mark = new_mark('COURSE_TOUR_LAUNCH')
         self.process = subprocess.Popen(argv, stdout=self._log, stderr=subprocess.STDOUT,
-                                        stdin=subprocess.DEVNULL, env=env, start_new_session=True)
+                                        stdin=subprocess.DEVNULL, env=with_mark(self.mark, env),
+                                        start_new_session=True)
 
     def output(self):
         with open(self.log_path, errors='replace') as log:
             return log.read()
 
     def stop(self, timeout=20.0):
-        stop_process_group(self.process, timeout)
-        self._log.close()
+        try:
+            stop_process_group(self.process, timeout)
+        finally:
+            stop_marked(self.mark)   # a node that outlived its roslaunch
+            self._log.close()
 
 
 class Session:
@@ -43,6 +52,9 @@ class Session:
         self.output_dir = output_dir
         self.log_dir = os.path.join(output_dir, 'logs')
         os.makedirs(self.log_dir, exist_ok=True)
+        # In os.environ too: the teleops, Xvfb and rviz that labs start themselves carry it.
+        self.mark = new_mark('COURSE_TOUR')
+        os.environ.update(with_mark(self.mark, {}))
         self.env = dict(os.environ)
         self.env['PYTHONUNBUFFERED'] = '1'  # print() of the course nodes reaches the log at once
         self._launched = []
@@ -62,9 +74,12 @@ class Session:
         return self
 
     def __exit__(self, *exc):
-        self.stop_all()
-        rospy.signal_shutdown('tour finished')
-        self._master.stop()
+        try:
+            self.stop_all()
+            rospy.signal_shutdown('tour finished')
+            self._master.stop()
+        finally:
+            stop_marked(self.mark)   # whatever a lab started and did not stop
         return False
 
     def picture(self, name):

@@ -17,6 +17,7 @@ import xmlrpc.client
 
 import rosgraph
 
+from course_testing.process_table import descendants
 from course_testing.processes import stop_process_group
 from course_testing.waiting import wait_until
 
@@ -93,25 +94,6 @@ class Process:
                 pass
         kill_pids(family)
         self.popen.wait(10)
-
-
-def descendants(pid):
-    """PIDs of every living process below `pid` (from /proc, at the time of the call)."""
-    children = {}
-    for entry in os.listdir('/proc'):
-        if entry.isdigit():
-            try:
-                with open('/proc/%s/stat' % entry) as stat:
-                    parent = int(stat.read().rsplit(')', 1)[1].split()[1])
-            except (OSError, IndexError, ValueError):
-                continue
-            children.setdefault(parent, []).append(int(entry))
-    found, frontier = [], [pid]
-    while frontier:
-        below = children.get(frontier.pop(), [])
-        found.extend(below)
-        frontier.extend(below)
-    return found
 
 
 def kill_pids(pids):

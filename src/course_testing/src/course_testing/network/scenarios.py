@@ -17,8 +17,9 @@ import xmlrpc.client
 import rosgraph
 from rosgraph.network import encode_ros_handshake_header
 
-from course_testing.network.rosnet import (HERE, PYTHON, descendants, listening_sockets, node_api, now,
-                                           project_environment, received_bytes, start_master, start_probe)
+from course_testing.network.rosnet import (HERE, PYTHON, listening_sockets, node_api, now, project_environment,
+                                           received_bytes, start_master, start_probe)
+from course_testing.process_table import descendants
 from course_testing.processes import free_port
 from course_testing.waiting import wait_until
 

@@ -1,0 +1,121 @@
+"""The processes of this machine, read from /proc: found by their parent, their user or a mark in
+their environment, and stopped.
+
+A mark (NAME=value, the value new each time) put into the environment of what a program starts is
+inherited by everything that starts in turn, wherever it goes: roslaunch starts each node in a
+session of its own, and a node whose roslaunch has gone is reparented to init, where neither a
+process group nor a walk down from the parent finds it. Its environment still carries the mark.
+"""
+import os
+import signal
+import time
+import uuid
+
+PROC = '/proc'
+
+
+def process_ids():
+    """The ids of the processes living now (none where /proc is not mounted: a chroot)."""
+    try:
+        names = os.listdir(PROC)
+    except OSError:
+        return []
+    return [int(name) for name in names if name.isdigit()]
+
+
+def _read(pid, name):
+    """/proc/PID/NAME's bytes; None once the process has gone (or if it is not ours to read)."""
+    try:
+        with open('%s/%d/%s' % (PROC, pid, name), 'rb') as stream:
+            return stream.read()
+    except OSError:
+        return None
+
+
+def parent_of(pid):
+    """The id of the parent of `pid`; None once it has gone."""
+    stat = _read(pid, 'stat')
+    try:
+        return int(stat.rsplit(b')', 1)[1].split()[1])   # the command's name may hold ') '
+    except (AttributeError, IndexError, ValueError):
+        return None
+
+
+def descendants(pid):
+    """The ids of every living process below `pid` (its children, theirs, ...), at the time of the call."""
+    children = {}
+    for child in process_ids():
+        children.setdefault(parent_of(child), []).append(child)
+    found, frontier = [], [pid]
+    while frontier:
+        below = children.get(frontier.pop(), [])
+        found.extend(below)
+        frontier.extend(below)
+    return found
+
+
+def user_processes(uid):
+    """The ids of the live processes (not zombies) of the user `uid`."""
+    found = []
+    for pid in process_ids():
+        status = _read(pid, 'status')
+        if status is None:
+            continue
+        fields = dict(line.split(':', 1) for line in status.decode(errors='replace').splitlines() if ':' in line)
+        if str(uid) in fields.get('Uid', '').split() and not fields.get('State', '').strip().startswith('Z'):
+            found.append(pid)
+    return found
+
+
+def new_mark(name):
+    """A mark NAME=value, the value new: for the environment of what a program starts."""
+    return '%s=%s' % (name, uuid.uuid4().hex)
+
+
+def with_mark(mark, env=None):
+    """A copy of `env` (default os.environ) that carries `mark`."""
+    name, value = mark.split('=', 1)
+    return dict(os.environ if env is None else env, **{name: value})
+
+
+def marked_processes(mark):
+    """The ids of the live processes whose environment carries `mark` (NAME=value), this one excepted."""
+    needle = mark.encode()
+    return [pid for pid in process_ids()
+            if pid != os.getpid() and needle in (_read(pid, 'environ') or b'').split(b'\0')]
+
+
+def command_line(pid):
+    """'PID the command line' of a process, for a message ('PID (gone)' once it has gone)."""
+    command = _read(pid, 'cmdline')
+    if command is None:
+        return '%d (gone)' % pid
+    return '%d %s' % (pid, command.rstrip(b'\0').replace(b'\0', b' ').decode(errors='replace'))
+
+
+def stop_processes(find, tries=50, pause=0.1):
+    """SIGKILL every process `find()` names (this one excepted), again until it names none (one may
+    fork meanwhile). Returns how many were stopped."""
+    stopped = 0
+    for _ in range(tries):
+        found = [pid for pid in find() if pid != os.getpid()]
+        if not found:
+            break
+        for pid in found:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError):
+                pass
+        stopped += len(found)
+        time.sleep(pause)
+    return stopped
+
+
+def stop_marked(mark):
+    """SIGKILL every process whose environment carries `mark`; returns how many were stopped."""
+    return stop_processes(lambda: marked_processes(mark))
+
+
+def stop_user(uid):
+    """SIGKILL every process of the user `uid` (the student's side in a sandbox); returns how many."""
+    return stop_processes(lambda: user_processes(uid))

@@ -1,0 +1,52 @@
+"""The processes found in /proc by parent, user and mark, and stopped wherever they went."""
+import os
+import signal
+import subprocess
+
+from course_testing.process_table import (command_line, descendants, marked_processes, new_mark, stop_marked,
+                                          user_processes, with_mark)
+from course_testing.waiting import wait_until
+
+
+def test_what_escaped_to_init_in_sessions_of_its_own_is_found_and_stopped_by_its_mark():
+    # As roslaunch's nodes: in a session of their own, reparented to init when their parent goes.
+    mark = new_mark('COURSE_TEST_MARK')
+    env = with_mark(mark)
+    subprocess.run(['setsid', '-f', 'sleep', '600'], env=env, check=True)
+    subprocess.run(['setsid', '-f', 'bash', '-c', 'sleep 600 & sleep 600'], env=env, check=True)
+    try:
+        wait_until(lambda: len(marked_processes(mark)) == 4, 10, 'the three sleeps and their bash')
+        assert sorted(command_line(pid).split(' ', 1)[1] for pid in marked_processes(mark)) == \
+            ['bash -c sleep 600 & sleep 600'] + ['sleep 600'] * 3
+        assert marked_processes(new_mark('COURSE_TEST_MARK')) == []   # another mark, none of them
+    finally:
+        assert stop_marked(mark) == 4
+    assert marked_processes(mark) == []
+
+
+def test_the_processes_below_one_are_its_children_and_theirs():
+    parent = subprocess.Popen(['bash', '-c', 'sleep 600 & sleep 600 & wait'])
+    try:
+        wait_until(lambda: len(descendants(parent.pid)) == 2, 10, 'the two sleeps')
+        assert all(command_line(pid).endswith(' sleep 600') for pid in descendants(parent.pid))
+        assert parent.pid in descendants(os.getpid())
+        assert set(descendants(parent.pid)) < set(descendants(os.getpid()))
+    finally:
+        for pid in descendants(parent.pid):
+            os.kill(pid, signal.SIGKILL)
+        parent.wait()
+    assert descendants(parent.pid) == []
+
+
+def test_the_processes_of_a_user_are_found_but_not_the_dead_ones():
+    sleeper = subprocess.Popen(['sleep', '600'])
+    try:
+        assert sleeper.pid in user_processes(os.getuid())
+        assert sleeper.pid not in user_processes(os.getuid() + 1)
+    finally:
+        sleeper.kill()
+    # Killed, not yet waited for: a zombie (PID 1 of a container may never reap it) is not looked for.
+    wait_until(lambda: sleeper.pid not in user_processes(os.getuid()), 10, 'the killed sleep to be a zombie')
+    assert command_line(sleeper.pid) == '%d ' % sleeper.pid   # a zombie has no command line left
+    sleeper.wait()
+    assert command_line(sleeper.pid) == '%d (gone)' % sleeper.pid
