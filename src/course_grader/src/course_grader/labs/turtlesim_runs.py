@@ -112,12 +112,15 @@ class TurtlesimLaunch:
         # The student's nodes read /use_sim_time when they start: set before anything starts.
         rospy.set_param('/use_sim_time', real_time_factor is not None)
         for index, node in enumerate(self.declared):
-            self.start_turtlesim(node, real_time_factor, picture if index == 0 else None)
+            self.start_turtlesim(node, real_time_factor, picture if index == 0 else None, wait=False)
+        # The rest starts beside turtlesim, as roslaunch starts a file's nodes: none waits for another.
         self.run = session.student(LAUNCHER + ['launch', session.rubric.package, launch_file] + list(args), log_name)
+        for name in list(self.simulators):
+            self.wait_for_turtlesim(name)
 
-    def start_turtlesim(self, node, real_time_factor=None, picture=None):
+    def start_turtlesim(self, node, real_time_factor=None, picture=None, wait=True):
         """The course's turtlesim as `node` declares it (name, remappings, private parameters);
-        returns once it serves (or after start_seconds)."""
+        with `wait`, returns once it serves (or after start_seconds)."""
         name = node['name']
         try:
             rospy.delete_param(name)   # what an earlier run left under its name
@@ -133,11 +136,20 @@ class TurtlesimLaunch:
                                       + ['%s:=%s' % pair for pair in node['remaps']],
                                       self.sim_log if not self.simulators else '%s_%d.txt' % (
                                           self.sim_log[:-4], len(self.simulators)))
+        self.simulators[name] = (launch, None)
+        if wait:
+            self.wait_for_turtlesim(name)
+
+    def wait_for_turtlesim(self, name):
+        """Waits until turtlesim `name` serves (or start_seconds), and notes the XML-RPC URI the
+        master gives for its name: a node that takes that name later changes it. One that took it
+        before shut ours down (the master shuts the older down): ours has ended, which is seen too."""
+        launch = self.simulators[name][0]
         master = rosgraph.Master(rospy.get_name())
 
         def serving():
             try:
-                master.lookupService(rosgraph.names.ns_join(namespace, 'clear'))
+                master.lookupService(rosgraph.names.ns_join(rosgraph.names.namespace(name), 'clear'))
                 return master.lookupNode(name)
             except Exception:   # noqa: B902 (not yet)
                 return None
