@@ -6,9 +6,11 @@ turtlesim runs on its own simulated clock that much faster than real time, and s
 nodes (/use_sim_time)."""
 import json
 import os
+import threading
 
 import rosgraph
 import rosgraph.names
+import roslib.packages
 import rospy
 from rosgraph_msgs.msg import Clock
 
@@ -132,7 +134,8 @@ class TurtlesimLaunch:
         if real_time_factor is not None:
             rospy.set_param(name + '/real_time_factor', float(real_time_factor))
         namespace, base = rosgraph.names.namespace(name), name.rsplit('/', 1)[-1]
-        launch = self.session.trusted(['rosrun', 'turtlesim', 'turtlesim_node', '__name:=' + base, '__ns:=' + namespace]
+        executable = roslib.packages.find_node('turtlesim', 'turtlesim_node')[0]   # the course's (our environment)
+        launch = self.session.trusted([executable, '__name:=' + base, '__ns:=' + namespace]
                                       + ['%s:=%s' % pair for pair in node['remaps']],
                                       self.sim_log if not self.simulators else '%s_%d.txt' % (
                                           self.sim_log[:-4], len(self.simulators)))
@@ -175,17 +178,20 @@ class TurtlesimLaunch:
         return None
 
     def finish(self):
-        """Stops the student's side; then the simulators, unless they were stopped or replaced
-        before (kept as `trouble`, a sentence)."""
+        """Notes whether a simulator was stopped or replaced before now (`trouble`, a sentence),
+        then stops the student's side and the simulators together (turtlesim saves its canvas)."""
         if self.stopped:
             return
         self.stopped = True
         self.trouble = self._replaced()
+        stops = [(launch, 15) for launch, _ in self.simulators.values()]
         if self.run:
-            self.run.stop(self.session.rubric.limits['stop_seconds'])
-        self.trouble = self.trouble or self._replaced()   # one shut down at the very end
-        for launch, _ in self.simulators.values():
-            launch.stop(15)
+            stops.append((self.run, self.session.rubric.limits['stop_seconds']))
+        threads = [threading.Thread(target=launch.stop, args=(seconds,)) for launch, seconds in stops]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
 
     def judged(self, outcomes):
         """The outcomes of the run, unless a turtlesim the grader started stopped or was replaced
