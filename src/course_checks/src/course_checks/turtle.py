@@ -17,7 +17,9 @@ JITTER = 0.25       # seconds a pose may arrive late on a busy machine (jumps)
 MOVING_M = 0.01      # over the last ten poses heard: the turtle moves
 STILL_M = 1e-3       # over STILL_SECONDS of poses: the turtle stands still
 STILL_SECONDS = 0.3
-UNUSED_SERVICES = ('teleport_absolute', 'teleport_relative', 'reset')   # the labs move turtles by cmd_vel
+# The labs move turtles by cmd_vel; save_canvas writes where ~canvas_png says, and the course's
+# turtlesim of a grading runs on the trusted side.
+UNUSED_SERVICES = ('teleport_absolute', 'teleport_relative', 'reset', 'save_canvas')
 
 
 def turtle_poses(turtle):

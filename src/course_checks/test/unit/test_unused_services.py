@@ -6,9 +6,9 @@ CALLS = [('/clear', '/clear_node'), ('/turtle1/teleport_absolute', '/circle'), (
          ('/turtlesim/save_canvas', '/tour')]
 
 
-def test_the_turtle_labs_count_teleports_and_reset_only():
+def test_the_turtle_labs_count_teleports_reset_and_save_canvas_not_clear():
     assert service_calls.unused(CALLS, turtle.UNUSED_SERVICES) == [
-        ('/turtle1/teleport_absolute', '/circle'), ('/reset', '/reset_node')]
+        ('/turtle1/teleport_absolute', '/circle'), ('/reset', '/reset_node'), ('/turtlesim/save_canvas', '/tour')]
 
 
 def test_every_call_counts_where_the_lab_uses_no_service():

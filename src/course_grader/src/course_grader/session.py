@@ -10,7 +10,6 @@ stream on this process's standard output, which no process of the student's hold
 import argparse
 import os
 import pwd
-import stat
 import subprocess
 import sys
 import tarfile
@@ -21,8 +20,6 @@ from course_grader import feedback, labs, results, rubric as rubrics
 from course_testing.process_table import stop_user
 from course_grader.results import Verdict
 
-MAX_PICTURE_BYTES = 5 * 2 ** 20
-
 
 class StudentSide:
     """How the student's build and nodes are started: as `user` (None: as we are), with the
@@ -32,16 +29,15 @@ class StudentSide:
         self.user = user
         self.scratch = scratch
         self.home = os.path.join(scratch, 'home')
-        self.pictures = os.path.join(scratch, 'pictures')   # where the student's turtlesim saves
         self.env = dict(os.environ, HOME=self.home, ROS_HOME=os.path.join(scratch, 'ros_home'))
 
     def start(self, argv, log_path, cwd=None):
         return Launch(argv, log_path, env=self.env, user=self.user, cwd=cwd)
 
-    def run(self, argv, timeout):
-        """What a short command printed (standard output)."""
+    def run(self, argv, timeout, env=None, cwd=None):
+        """What a short command printed (standard output); with `env` instead of the side's own."""
         as_user = {'user': self.user, 'group': self.user, 'extra_groups': []} if self.user else {}
-        return subprocess.run(argv, env=self.env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+        return subprocess.run(argv, env=self.env if env is None else env, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                               stderr=subprocess.DEVNULL, timeout=timeout, check=True, **as_user).stdout
 
     def stop_all(self):
@@ -64,6 +60,7 @@ class Session:
         self.student_side = student_side
         self.only = only   # a criterion id: the runs that judge other criteria are left out
         self.pictures = []
+        self.turtlesim_nodes = {}   # (launch file, args): what it declares of turtlesim (labs.turtlesim_runs)
 
     def script(self, name):
         """Path of a student's script by file name (scripts/ first), or None."""
@@ -90,25 +87,6 @@ class Session:
         self.pictures.append(name)
         return self.log_path(name)
 
-    def student_picture(self, name):
-        """Where a simulator the student's launch file starts saves the picture `name`; fetched
-        into the output folder by keep_student_picture once it has stopped."""
-        return os.path.join(self.student_side.pictures, name)
-
-    def keep_student_picture(self, name):
-        """The picture saved on the student's side, if it is a regular PNG file of a sane size."""
-        try:
-            descriptor = os.open(self.student_picture(name), os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
-        except OSError:
-            return
-        with os.fdopen(descriptor, 'rb') as source:
-            info = os.fstat(source.fileno())
-            data = source.read(MAX_PICTURE_BYTES + 1) if stat.S_ISREG(info.st_mode) else b''
-        if data.startswith(b'\x89PNG') and len(data) <= MAX_PICTURE_BYTES:
-            with open(self.log_path(name), 'wb') as target:
-                target.write(data)
-            self.pictures.append(name)
-
 
 def run_logged(side, argv, log_path, timeout, cwd=None):
     """Run a command on the student's side, its output to log_path; on timeout stop its group.
@@ -133,9 +111,9 @@ def build(session, scratch):
     seconds = session.rubric.limits['build_seconds']
     # ROS_HOME made here, by the student's user: rospy would give a log folder it makes the owner of
     # its parent (root's scratch folder), fail to, and print a warning into every node's output.
-    code = run_logged(side, ['bash', '-c', 'mkdir -p "$1" "$2" "$3" "$4/src" && cp -R "$5" "$6" && exec catkin_make '
-                             '--directory "$4" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -j1',
-                             'build', side.home, side.pictures, side.env['ROS_HOME'], workspace,
+    code = run_logged(side, ['bash', '-c', 'mkdir -p "$1" "$2" "$3/src" && cp -R "$4" "$5" && exec catkin_make '
+                             '--directory "$3" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -j1',
+                             'build', side.home, side.env['ROS_HOME'], workspace,
                              session.package_dir, package],
                       log, seconds)
     if code != 0:

@@ -1,5 +1,6 @@
 """The turtlesim lab (seed 000): my_turtle's move_turtle.launch, the teleop relay and the pose
-printout, on the course's turtlesim, with the checks of course_checks that my_turtle's own tests use."""
+printout, on the course's turtlesim (started by the grader in place of the launch file's own,
+labs.turtlesim_runs), with the checks of course_checks that my_turtle's own tests use."""
 import re
 import threading
 import time
@@ -12,6 +13,7 @@ from course_checks.robot import node_names, senders
 from course_checks.verdict import Verdict
 from course_checks.waiting import Deadline, wait_for
 from course_grader.labs.common import faked, run_each
+from course_grader.labs.turtlesim_runs import TurtlesimLaunch
 
 PRINTED_POSE = re.compile(r'x: (-?\d+\.\d+), y: (-?\d+\.\d+)')
 SIMULATOR = '/turtlesim_node'
@@ -27,35 +29,34 @@ def check_turtle(session):
     rubric = session.rubric
     launch_c, teleop_c, pose_c = (rubric.criterion(i) for i in ('launch', 'teleop', 'prints_pose'))
     deadline = Deadline(rubric.limits['run_seconds'])
-    # turtlesim, started by the student's launch file, saves its canvas on the student's side.
-    rospy.set_param('/turtlesim_node/canvas_png', session.student_picture('turtle.png'))
     known = node_names()
     launch_file = launch_c['launch_file']
-    runs = [session.student(['roslaunch', rubric.package, launch_file], 'move_turtle.log')]
+    # turtlesim in real time: the teleop criterion measures the turtle's speed on the wall clock.
+    launch = TurtlesimLaunch(session, launch_file, [], 'move_turtle.log', picture='turtle.png')
+    runs = [launch.run]
     outcomes = {}
     try:
         def started():
-            return {'/turtlesim_node', '/my_turtle_node'} <= node_names() - known
-        launched = wait_for(started, rubric.limits['start_seconds'], gave_up=runs[0].ended)
-        seen = sorted(node_names() - known)
+            return '/my_turtle_node' in node_names() - known
+        launched = SIMULATOR in launch.simulators and wait_for(started, rubric.limits['start_seconds'],
+                                                                gave_up=launch.run.ended)
+        seen = sorted(set(launch.simulators) | (node_names() - known))
         if launched:
             outcomes['launch'] = Verdict(True, 'started %s' % ', '.join(seen))
         else:
-            outcomes['launch'] = Verdict(False, 'expected `roslaunch %s %s` to start /turtlesim_node and '
+            outcomes['launch'] = Verdict(False, 'expected `roslaunch %s %s` to start %s (turtlesim) and '
                                          '/my_turtle_node; seen: %s%s' % (
-                                             rubric.package, launch_file, ', '.join(seen) or 'no node',
-                                             '; ' + runs[0].error_lines()))
+                                             rubric.package, launch_file, SIMULATOR, ', '.join(seen) or 'no node',
+                                             '; ' + (launch.unread or launch.run.error_lines())))
             # The other criteria still get their chance: turtlesim and the node, started by hand.
-            runs[0].stop(rubric.limits['stop_seconds'])
-            if '/turtlesim_node' not in node_names():   # the course's turtlesim, on the trusted side
-                rospy.set_param('/turtlesim_node/canvas_png', session.picture('turtle.png'))
-                runs.append(session.trusted(['rosrun', 'turtlesim', 'turtlesim_node', '__name:=turtlesim_node'],
-                                            'turtlesim.txt'))
+            launch.run.stop(rubric.limits['stop_seconds'])
+            if not launch.simulators:   # one the launch file declared under another name stays
+                launch.start_turtlesim({'name': SIMULATOR, 'remaps': [], 'params': {}}, picture='turtle.png')
             runs.append(session.student(['rosrun', rubric.package, launch_c['executable'],
                                          '__name:=my_turtle_node'], 'my_turtle_node.log'))
             if not wait_for(lambda: '/my_turtle_node' in node_names(), rubric.limits['start_seconds']):
                 reason = 'not checked: the node %s did not start' % launch_c['executable']
-                return dict(outcomes, teleop=Verdict(False, reason), prints_pose=Verdict(False, reason))
+                return launch.judged(dict(outcomes, teleop=Verdict(False, reason), prints_pose=Verdict(False, reason)))
         watch = turtle.turtle_poses('turtle1')
         teleop = rospy.Publisher('/cmd_vel_mux/input/teleop', Twist, queue_size=1)
         wait_for(lambda: teleop.get_num_connections() > 0, 10)
@@ -92,19 +93,20 @@ def check_turtle(session):
         shown = printed()
         outcomes['prints_pose'] = Verdict(shown.passed, 'expected lines `x: %.2f, y: %.2f` (the pose turtlesim '
                                           'publishes, printed on every pose); seen %s' % (final.x, final.y, shown.reason))
-        impostors = {topic: nodes for topic, nodes in (('turtle1/pose', sorted(senders(watch) - {SIMULATOR})),)
-                     if nodes}
+        impostors = {topic: nodes for topic, nodes in
+                     (('turtle1/pose', sorted(senders(watch) - set(launch.simulators))),) if nodes}
         if impostors:
             outcomes.update(faked(['teleop', 'prints_pose'], impostors, SIMULATOR))
         else:
-            outcomes['teleop'] = (turtle.no_unused_calls(SIMULATOR) or turtle.no_jumps(watch, 'turtle1')
+            unused_calls = [turtle.no_unused_calls(name) for name in sorted(launch.simulators)]
+            outcomes['teleop'] = (next(filter(None, unused_calls), None) or turtle.no_jumps(watch, 'turtle1')
                                   or outcomes['teleop'])
-        return outcomes
+        judged = launch.judged({criterion_id: outcomes[criterion_id] for criterion_id in ('teleop', 'prints_pose')})
+        return dict(outcomes, **judged)
     finally:
-        for run in reversed(runs):
+        for run in reversed(runs[1:]):
             run.stop(rubric.limits['stop_seconds'])
-        if 'turtle.png' not in session.pictures:
-            session.keep_student_picture('turtle.png')
+        launch.finish()
 
 
 def run_checks(session):

@@ -1,5 +1,6 @@
 """The lab report's exercises (seed 002): ros_exercises' launch files exercise1..5 on the course's
-turtlesim, with the checks of course_checks that ros_exercises' own tests use."""
+turtlesim (started by the grader in place of the launch file's own, labs.turtlesim_runs), with the
+checks of course_checks that ros_exercises' own tests use."""
 import re
 import time
 
@@ -12,20 +13,20 @@ from course_checks.robot import senders
 from course_checks.verdict import Verdict
 from course_checks.waiting import Deadline
 from course_grader.labs.common import faked, run_each
+from course_grader.labs.turtlesim_runs import SimulatedClock, TurtlesimLaunch, describe_launches
 from course_testing.recording import TopicRecorder
 
 NUMBER = r'(-?\d+\.\d+)'
-SIMULATOR = '/turtlesim'
 CRITERIA = {
     'builds': (),
     'publisher_rate': ('launch_file', 'rate', 'id_number', 'skipped', 'messages', 'tolerance'),
     'subscriber_prints': ('repeats',),
-    'listener_prints_pose': ('launch_file', 'linear', 'angular', 'until_x'),
-    'circle': ('launch_file', 'start', 'radius', 'tolerance', 'turn_seconds'),
-    'spawn_kill': ('launch_file', 'spawn', 'tolerance'),
+    'listener_prints_pose': ('launch_file', 'linear', 'angular', 'until_x', 'real_time_factor'),
+    'circle': ('launch_file', 'start', 'radius', 'tolerance', 'turn_seconds', 'real_time_factor'),
+    'spawn_kill': ('launch_file', 'spawn', 'tolerance', 'real_time_factor'),
     'clear': (),
-    'square': ('launch_file', 'spawn', 'side', 'speed', 'turn_speed', 'tolerance'),
-    'triangle': ('launch_file', 'spawn', 'side', 'speed', 'turn_speed', 'tolerance'),
+    'square': ('launch_file', 'spawn', 'side', 'speed', 'turn_speed', 'tolerance', 'real_time_factor'),
+    'triangle': ('launch_file', 'spawn', 'side', 'speed', 'turn_speed', 'tolerance', 'real_time_factor'),
 }
 
 
@@ -33,30 +34,42 @@ def _printed(run, pattern):
     return [match.groups() for match in (re.search(pattern, line) for line in run.lines) if match]
 
 
-def _on_interface(recorder, name):
-    """A failing verdict when the turtle's poses came from another node than turtlesim, when a node
-    called a teleport or /reset, or the turtle moved where no velocity took it; None when the
-    simulator alone moved it."""
-    others = sorted(senders(recorder) - {SIMULATOR})
-    if others:
-        return faked(['x'], {'%s/pose' % name: others}, SIMULATOR)['x']
-    return turtle.no_unused_calls(SIMULATOR) or turtle.no_jumps(recorder, name)
+def _args(session, shape):
+    """The arguments exercise5.launch is run with for `shape`."""
+    criterion = session.rubric.criterion(shape)
+    return ['shape:=' + shape, 'side:=%g' % criterion['side'], 'speed:=%g' % criterion['speed'],
+            'turn_speed:=%g' % criterion['turn_speed']]
 
 
-class Exercise:
-    """One of the student's launch files (with its own turtlesim), run on the student's side, logged
-    to <name>.log, stopped at the end; turtlesim's window is kept as `picture`."""
+def _launches(session):
+    """Each launch file the lab runs, with its arguments."""
+    rate_c = session.rubric.criterion('publisher_rate')
+    return [(rate_c['launch_file'], ['rate:=%g' % rate_c['rate'], 'id:=%s' % rate_c['id_number']])] + [
+        (session.rubric.criterion(criterion_id)['launch_file'], []) for criterion_id in
+        ('listener_prints_pose', 'circle', 'spawn_kill')] + [
+        (session.rubric.criterion(shape)['launch_file'], _args(session, shape)) for shape in ('square', 'triangle')]
 
-    def __init__(self, session, criterion, log_name, *args, picture=None):
-        self.session = session
-        self.picture = picture
+
+class Exercise(TurtlesimLaunch):
+    """One of the student's launch files, run as the lab asks (its turtlesim on the trusted side, at
+    the criterion's real-time factor), logged to <name>.log, stopped at the end; turtlesim's window
+    is kept as `picture`."""
+
+    def __init__(self, session, criterion, log_name, *args, picture=None, on_wall_clock=False):
         self.deadline = Deadline(session.rubric.limits['run_seconds'])
-        # turtlesim saves its canvas there when it stops (on the student's side: the launch starts it)
-        rospy.set_param('/turtlesim/canvas_png', session.student_picture(picture) if picture else '')
-        self.command = 'roslaunch %s %s%s' % (session.rubric.package, criterion['launch_file'],
-                                              ''.join(' ' + arg for arg in args))
-        self.run = session.student(['roslaunch', session.rubric.package, criterion['launch_file']] + list(args),
-                                   log_name)
+        super().__init__(session, criterion['launch_file'], list(args), log_name, picture=picture,
+                         real_time_factor=None if on_wall_clock else criterion['real_time_factor'])
+
+    def on_interface(self, recorder, name):
+        """A failing verdict when the turtle's poses came from another node than the course's
+        turtlesim, when a node called a teleport or /reset, or the turtle moved where no velocity
+        took it; None when the simulator alone moved it."""
+        others = sorted(senders(recorder) - set(self.simulators))
+        if others:
+            owner = ', '.join(sorted(self.simulators)) or 'turtlesim'
+            return faked(['x'], {'%s/pose' % name: others}, owner)['x']
+        unused_calls = [turtle.no_unused_calls(simulator) for simulator in sorted(self.simulators)]
+        return next(filter(None, unused_calls), None) or turtle.no_jumps(recorder, name)
 
     def wait(self, condition, seconds=None):
         """condition() within `seconds` (the run's time left at most); False as soon as the launch ended."""
@@ -66,12 +79,9 @@ class Exercise:
         return _printed(self.run, pattern)
 
     def nothing(self, what):
+        if self.unread:
+            return 'expected `%s` to %s; seen: %s' % (self.command, what, self.unread)
         return 'expected `%s` to %s; seen: %s' % (self.command, what, self.run.error_lines())
-
-    def stop(self):
-        self.run.stop(self.session.rubric.limits['stop_seconds'])
-        if self.picture:
-            self.session.keep_student_picture(self.picture)
 
 
 def check_publisher_subscriber(session):
@@ -79,7 +89,8 @@ def check_publisher_subscriber(session):
     id_number, rate, skipped = str(rate_c['id_number']), rate_c['rate'], int(rate_c['skipped'])
     count = int(rate_c['messages']) + skipped
     digits = TopicRecorder('/ZabirovaKostyukova', Int32)
-    exercise = Exercise(session, rate_c, 'exercise1.log', 'rate:=%g' % rate, 'id:=' + id_number)
+    # The publisher's rate is judged on the wall clock: no simulated clock for exercise 1.
+    exercise = Exercise(session, rate_c, 'exercise1.log', 'rate:=%g' % rate, 'id:=' + id_number, on_wall_clock=True)
     window = 1.5 * count / rate   # seconds from the first digit: a slower publisher is measured over what came
 
     def measured_enough():
@@ -109,9 +120,9 @@ def check_publisher_subscriber(session):
             in_order = rates.cycles_through(heard, id_number)
             outcomes['subscriber_prints'] = Verdict(in_order.passed, 'expected `I heard: [d]` for each digit of %s, in '
                                                     'order; seen %s' % (id_number, 'them' if in_order.passed else in_order.reason))
-        return outcomes
+        return exercise.judged(outcomes)
     finally:
-        exercise.stop()
+        exercise.finish()
         digits.close()
 
 
@@ -121,18 +132,20 @@ def check_listener(session):
     exercise = Exercise(session, criterion, 'exercise2.log')
     line = r'x: %s, y: %s, theta: %s' % (NUMBER, NUMBER, NUMBER)
     teleop = rospy.Publisher('/turtle1/cmd_vel', Twist, queue_size=1)
-    timer = None
+    clock = None
     try:
         if not exercise.wait(lambda: exercise.printed(line), session.rubric.limits['start_seconds']):
-            return {'listener_prints_pose': Verdict(False, exercise.nothing('print lines `x: .., y: .., theta: ..`'))}
+            return exercise.judged({'listener_prints_pose': Verdict(
+                False, exercise.nothing('print lines `x: .., y: .., theta: ..`'))})
         # The grader hears every pose from here on: the turtle stands still until then.
         exercise.wait(lambda: poses.count(), 10)
-        # Drive the turtle as a teleop would, until the listener has printed it moving.
+        # Drive the turtle as a teleop would (20 Hz of turtlesim's clock), until the listener has
+        # printed it moving.
         command = Twist()
         command.linear.x, command.angular.z = criterion['linear'], criterion['angular']
-        timer = rospy.Timer(rospy.Duration(0.05), lambda _: teleop.publish(command))
+        clock = SimulatedClock(0.05, lambda: teleop.publish(command))
         moved = exercise.wait(lambda: any(float(x) > criterion['until_x'] for x, _, _ in exercise.printed(line)), 10)
-        timer.shutdown()
+        clock.shutdown()
         printed = exercise.printed(line)
         judged = turtle.printed_poses_published(printed, poses)
         wrong = None if judged.passed else judged.reason
@@ -141,12 +154,12 @@ def check_listener(session):
                 criterion['until_x'], printed[-1],)
         verdict = Verdict(not wrong, 'expected the pose turtlesim publishes, printed as the turtle moves; seen %s'
                           % (wrong or judged.reason))
-        return {'listener_prints_pose': _on_interface(poses, 'turtle1') or verdict}
+        return exercise.judged({'listener_prints_pose': exercise.on_interface(poses, 'turtle1') or verdict})
     finally:
-        if timer:
-            timer.shutdown()
+        if clock:
+            clock.shutdown()
         teleop.unregister()
-        exercise.stop()
+        exercise.finish()
         poses.close()
 
 
@@ -158,7 +171,7 @@ def check_circle(session):
     try:
         if not exercise.wait(lambda: poses.count() and poses.latest().linear_velocity > 0,
                              session.rubric.limits['start_seconds']):
-            return {'circle': Verdict(False, exercise.nothing('drive turtle1'))}
+            return exercise.judged({'circle': Verdict(False, exercise.nothing('drive turtle1'))})
         # turtle1 starts at the middle facing +x: the centre is `radius` to its left.
         centre = (criterion['start'][0], criterion['start'][1] + radius)
         full_turn, seconds = turtle.full_turn(radius), criterion['turn_seconds']
@@ -176,9 +189,9 @@ def check_circle(session):
             wrong, seen = (None, judged.reason) if judged.passed else (judged.reason, None)
         verdict = Verdict(not wrong, 'expected a circle of radius %g m around (%.2f, %.2f), with the pose '
                           'printed; seen %s' % (radius, centre[0], centre[1], wrong or 'it: ' + seen))
-        return {'circle': _on_interface(poses, 'turtle1') or verdict}
+        return exercise.judged({'circle': exercise.on_interface(poses, 'turtle1') or verdict})
     finally:
-        exercise.stop()
+        exercise.finish()
         poses.close()
 
 
@@ -190,9 +203,8 @@ def check_spawn_kill(session):
     criterion = session.rubric.criterion('spawn_kill')
     spawn = tuple(criterion['spawn'])
     poses = turtle.turtle_poses('robotics')
-    # --screen: turtlesim's own log lines come with the launch's output, as in the terminal of
-    # `rosrun turtlesim turtlesim_node`; its window at the end is the picture.
-    exercise = Exercise(session, criterion, 'exercise4.log', '--screen', picture='spawn_kill.png')
+    # turtlesim's window at the end is the picture; its lines are the grader's (the trusted side's).
+    exercise = Exercise(session, criterion, 'exercise4.log', picture='spawn_kill.png')
     try:
         if not exercise.wait(lambda: poses.count(), session.rubric.limits['start_seconds']):
             spawned = Verdict(False, exercise.nothing('spawn the turtle robotics'))
@@ -202,13 +214,15 @@ def check_spawn_kill(session):
             spawned = Verdict(at_start.passed and gone, 'expected robotics at (%.2f, %.2f, %.2f) and turtle1 killed; '
                               'seen robotics %s, turtle1 %s' % (spawn + (at_start.reason, 'killed' if gone else
                                                                          'still there')))
-        cleared = exercise.wait(lambda: exercise.printed(r'(Clearing turtlesim\.)\s*$'), 5)
-        return {'spawn_kill': _on_interface(poses, 'robotics') or spawned,
-                'clear': Verdict(cleared, 'expected `%s` to clear the background with /clear; seen %s' % (
-                    exercise.command, 'turtlesim print `Clearing turtlesim.`' if cleared else
-                    'no line `Clearing turtlesim.` from turtlesim: call its service /clear (std_srvs/Empty)'))}
+        cleared = exercise.wait(lambda: any(re.search(r'Clearing turtlesim\.\s*$', line)
+                                            for line in exercise.simulator_lines), 5)
+        return exercise.judged({'spawn_kill': exercise.on_interface(poses, 'robotics') or spawned,
+                                'clear': Verdict(cleared, 'expected `%s` to clear the background with /clear; seen %s' % (
+                                    exercise.command, 'turtlesim print `Clearing turtlesim.`' if cleared else
+                                    'no line `Clearing turtlesim.` from turtlesim: call its service /clear '
+                                    '(std_srvs/Empty)'))})
     finally:
-        exercise.stop()
+        exercise.finish()
         poses.close()
 
 
@@ -218,25 +232,25 @@ def check_shape(session, shape):
     start = tuple(criterion['spawn'])
     outline = figures.polygon(*start, side, {'square': 4, 'triangle': 3}[shape])
     poses = turtle.turtle_poses('robotics')
-    exercise = Exercise(session, criterion, 'exercise5_%s.log' % shape, 'shape:=' + shape, 'side:=%g' % side,
-                        'speed:=%g' % criterion['speed'], 'turn_speed:=%g' % criterion['turn_speed'],
+    exercise = Exercise(session, criterion, 'exercise5_%s.log' % shape, *_args(session, shape),
                         picture='%s.png' % shape)
     try:
         finished = exercise.wait(lambda: exercise.printed(r'(Finished) the %s' % shape))
         path = turtle.pose_array(poses)
         if not len(path):
-            return {shape: Verdict(False, exercise.nothing('spawn robotics and drive a %s' % shape))}
+            return exercise.judged({shape: Verdict(False, exercise.nothing('spawn robotics and drive a %s' % shape))})
         closed = figures.closed_path(path[:, :2], outline, tolerance)
         verdict = Verdict(finished and closed.passed, 'expected a %s of side %g m from (%g, %g) back to its start, '
                           'within %g m; seen %s%s' % (shape, side, start[0], start[1], tolerance, closed.reason,
                                                       '' if finished else ', and no line `Finished the %s`' % shape))
-        return {shape: _on_interface(poses, 'robotics') or verdict}
+        return exercise.judged({shape: exercise.on_interface(poses, 'robotics') or verdict})
     finally:
-        exercise.stop()
+        exercise.finish()
         poses.close()
 
 
 def run_checks(session):
+    describe_launches(session, _launches(session))   # one run of roslaunch's loader for them all
     return run_each(session, [
         (check_publisher_subscriber, 'exercise1.launch', ['publisher_rate', 'subscriber_prints']),
         (check_listener, 'exercise2.launch', ['listener_prints_pose']),

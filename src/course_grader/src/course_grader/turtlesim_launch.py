@@ -1,0 +1,95 @@
+"""A student's launch file with its turtlesim node(s) left out, run on the student's side: the
+grader starts the course's turtlesim itself, on the trusted side, with what the launch file gives
+that node (name, namespace, remappings, private parameters), so that nothing of the student's
+build (a `sitecustomize.py` in devel/, a library) runs inside it.
+
+  python3 -m course_grader.turtlesim_launch describe PACKAGE FILE [NAME:=VALUE ...] [-- PACKAGE FILE ...]
+      prints, for each launch file, one line: `turtlesim nodes: ` and, as JSON, each turtlesim node
+      it declares, as roslaunch's own loader reads it (the arguments included), or why it could not;
+  python3 -m course_grader.turtlesim_launch launch [ROSLAUNCH OPTIONS] PACKAGE FILE [NAME:=VALUE ...]
+      is `roslaunch` with those nodes and their private parameters left out; it starts the other
+      nodes as roslaunch would.
+"""
+import json
+import sys
+
+import roslaunch
+import roslaunch.config
+import roslaunch.parent
+import roslaunch.rlutil
+
+TURTLESIM = ('turtlesim', 'turtlesim_node')
+PREFIX = 'turtlesim nodes: '
+
+
+def is_turtlesim(node):
+    return (node.package, node.type) == TURTLESIM
+
+
+def full_name(node):
+    return node.namespace + node.name
+
+
+def _private(name, node):
+    return name.startswith(full_name(node) + '/')
+
+
+def turtlesim_nodes(config):
+    """Each turtlesim node of a loaded launch configuration: its full name, its remappings and the
+    parameters in its private namespace (by their names relative to it)."""
+    return [{'name': full_name(node), 'remaps': [list(pair) for pair in node.remap_args],
+             'params': {name[len(full_name(node)) + 1:]: param.value
+                        for name, param in sorted(config.params.items()) if _private(name, node)}}
+            for node in config.nodes if is_turtlesim(node)]
+
+
+def leave_out_turtlesim(config):
+    """Takes the turtlesim nodes out of the configuration, with their private parameters (and the
+    clearing of them): returns their full names."""
+    left_out = [node for node in config.nodes if is_turtlesim(node)]
+    config.nodes = [node for node in config.nodes if not is_turtlesim(node)]
+    for node in left_out:
+        for name in [name for name in config.params if _private(name, node)]:
+            del config.params[name]
+        config.clear_params = [name for name in config.clear_params
+                               if not (name + '/').startswith(full_name(node) + '/')]
+    return [full_name(node) for node in left_out]
+
+
+class _WithoutTurtlesim(roslaunch.parent.ROSLaunchParent):
+    def _load_config(self):
+        super()._load_config()
+        leave_out_turtlesim(self.config)
+
+
+def describe(package, launch_file, args):
+    path = roslaunch.rlutil.resolve_launch_arguments([package, launch_file])[0]
+    config = roslaunch.config.load_config_default([(path, list(args))], None, verbose=False)
+    return turtlesim_nodes(config)
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ['describe']:
+        launches = [[]]
+        for arg in argv[1:]:
+            if arg == '--':
+                launches.append([])
+            else:
+                launches[-1].append(arg)
+        for launch in launches:
+            try:
+                line = PREFIX + json.dumps(describe(launch[0], launch[1], launch[2:]), default=str)
+            except Exception as error:   # noqa: B902 (whatever roslaunch refused, in one line)
+                line = 'roslaunch could not read it: %s' % str(error).replace('\n', ' ')
+            print(line, flush=True)
+        return 0
+    if argv[:1] == ['launch']:
+        roslaunch.parent.ROSLaunchParent = _WithoutTurtlesim
+        sys.argv = ['roslaunch'] + argv[1:]   # roslaunch's loader reads NAME:=VALUE from sys.argv
+        return roslaunch.main(sys.argv)
+    sys.exit(__doc__)
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,56 @@
+"""A student's launch file as the grader runs it: the turtlesim nodes it declares (name, namespace,
+remappings, private parameters, as roslaunch's loader reads them) are left out of what the student's
+side launches, and what reaches the trusted turtlesim is checked."""
+import roslaunch.config
+import roslaunch.xmlloader
+
+from course_grader.labs.turtlesim_runs import _node
+from course_grader.turtlesim_launch import leave_out_turtlesim, turtlesim_nodes
+
+LAUNCH = '''<launch>
+  <arg name="colour" default="10"/>
+  <param name="/shared" value="1"/>
+  <group ns="lab">
+    <node pkg="turtlesim" type="turtlesim_node" name="sim" clear_params="true">
+      <param name="background_r" value="$(arg colour)"/>
+      <remap from="turtle1/cmd_vel" to="robot/cmd_vel"/>
+    </node>
+  </group>
+  <node pkg="ros_exercises" type="circle" name="circle">
+    <param name="speed" value="2"/>
+  </node>
+  <node pkg="ros_exercises" type="turtlesim_node" name="turtlesim"/>
+</launch>'''
+
+
+def loaded(folder, argv=()):
+    path = folder / 'exercise.launch'
+    path.write_text(LAUNCH)
+    config = roslaunch.config.ROSLaunchConfig()
+    roslaunch.xmlloader.XmlLoader().load(str(path), config, argv=list(argv), verbose=False)
+    return config
+
+
+def test_the_turtlesim_node_is_described_with_its_name_remappings_and_private_parameters(tmp_path):
+    assert turtlesim_nodes(loaded(tmp_path, ['colour:=200'])) == [
+        {'name': '/lab/sim', 'remaps': [['turtle1/cmd_vel', 'robot/cmd_vel']], 'params': {'background_r': 200}}]
+
+
+def test_only_the_turtlesim_node_and_its_parameters_are_left_out(tmp_path):
+    config = loaded(tmp_path)
+    assert leave_out_turtlesim(config) == ['/lab/sim']
+    # A node of the student's package named like turtlesim is the student's: it stays (and is judged).
+    assert sorted(node.namespace + node.name for node in config.nodes) == ['/circle', '/turtlesim']
+    assert sorted(config.params) == ['/circle/speed', '/shared']
+    assert config.clear_params == []
+
+
+def test_what_reaches_the_trusted_turtlesim_is_checked():
+    declared = {'name': '/lab/sim', 'remaps': [['turtle1/pose', 'robot/pose'], ['__log', '/grader/x'],
+                                                ['__master', 'http://elsewhere:1'], ['a', 'b:=c']],
+                'params': {'background_g': 5, 'canvas_png': '/grader/result.json', 'real_time_factor': 1000,
+                           '../../use_sim_time': False, '/abs': 1}}
+    assert _node(declared) == {'name': '/lab/sim', 'remaps': [('turtle1/pose', 'robot/pose')],
+                               'params': {'background_g': 5}}
+    assert _node({'name': '__master'}) is None
+    assert _node(['not', 'a', 'node']) is None
