@@ -36,8 +36,13 @@ class MyTurtleViewTest(ViewInBrowser):
         wait_until(lambda: publishes_to('/course_web', RELAY, '/my_turtle_node'), 30,
                    'my_turtle_node to listen to the view on %s' % RELAY, poll=0.2)
         teleop = TopicRecorder(RELAY, Twist)
-        self.press(Keys.ARROW_UP)
-        command = teleop.next_message(timeout=10)
+        # Connected to the view before the key: a command sent before would not be recorded.
+        wait_until(lambda: teleop.subscriber.get_num_connections() > 0, 30,
+                   'the test to listen to the view on %s' % RELAY, poll=0.2)
+        heard = teleop.count()
+        self.press(Keys.ARROW_UP)   # one command a key: it may arrive before press() returns
+        teleop.wait_for_count(heard + 1, timeout=10)
+        command = teleop.messages()[heard]
         self.assertEqual((command.linear.x, command.angular.z), (2.0, 0.0))
         moved = pose.wait_for(lambda p: p.x > start.x + 0.5, 10, 'the relay to drive turtle1 forward')
         self.assertAlmostEqual(moved.y, start.y, places=3)

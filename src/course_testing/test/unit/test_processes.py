@@ -106,10 +106,13 @@ def test_a_read_program_that_prints_more_than_a_terminal_holds_does_not_block():
 
 # A program that starts a child in a session of its own and stops it in a finally block.
 STOPS_ITS_CHILD_IN_FINALLY = '''
-import subprocess, sys, time
+import signal, subprocess, sys, time
 from course_testing.processes import exit_on_terminate
 if sys.argv[1] == 'handled':
     exit_on_terminate()
+else:   # the default, even where the test runs with SIGHUP ignored (nohup) and a child inherits that
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.signal(signal.SIGHUP, signal.SIG_DFL)
 child = subprocess.Popen(['sleep', '600'], start_new_session=True)
 try:
     print(child.pid, flush=True)
