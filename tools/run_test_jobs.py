@@ -30,6 +30,7 @@ import time
 
 from course_testing.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
 from course_testing.processes import restore_ctrl_c
+from course_testing.waiting import poll_until
 
 # The lines of a rostest or pytest log that say what failed.
 WHY = re.compile(r'RESULT: FAIL|\[FAILURE\]|\[ERROR\] \[Testcase|^FAILED |^ERROR |Error:|'
@@ -105,9 +106,7 @@ class SideBySide:
 def left_running(mark, grace=5.0):
     """What still runs with `mark` in its environment once `grace` seconds have passed (a node may
     still be saving its picture as its roslaunch ends), as command lines; then stops it."""
-    deadline = time.monotonic() + grace
-    while marked_processes(mark) and time.monotonic() < deadline:
-        time.sleep(0.2)
+    poll_until(lambda: not marked_processes(mark), grace, poll=0.2)
     left = [command_line(pid) for pid in marked_processes(mark)]
     stop_marked(mark)
     return left

@@ -19,6 +19,7 @@ from course_grader import feedback, gradescope, reports, results, rubric as rubr
 from course_grader.submission import SubmissionError, ascii_name, find_package, student_of, unpack
 from course_testing import processes
 from course_testing.process_table import stop_marked
+from course_testing.waiting import poll_until
 
 MARKER = '.course_grader'            # in --out: the folder is the grader's (it may empty it)
 RUN_MARK = 'COURSE_GRADER_RUN'       # in the environment of everything a --no-container session starts
@@ -241,11 +242,8 @@ class Grader:
             subprocess.run(['docker', 'rm', '-f', name], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
             # rm -f answers at once while the engine is still removing it for --rm (seen under load):
             # gone means the engine no longer knows the name.
-            deadline = time.monotonic() + 60
-            while time.monotonic() < deadline and subprocess.run(
-                    ['docker', 'container', 'inspect', name], stdout=subprocess.DEVNULL,
-                    stderr=subprocess.DEVNULL).returncode == 0:
-                time.sleep(0.2)
+            poll_until(lambda: subprocess.run(['docker', 'container', 'inspect', name], stdout=subprocess.DEVNULL,
+                                              stderr=subprocess.DEVNULL).returncode != 0, 60, poll=0.2)
             if process.poll() is None:
                 process.kill()
                 process.wait()
