@@ -95,8 +95,9 @@ def command_line(pid):
 
 def stop_processes(find, tries=50, pause=0.1):
     """SIGKILL every process `find()` names (this one excepted), again until it names none (one may
-    fork meanwhile). Returns how many were stopped."""
-    stopped = 0
+    fork meanwhile). Returns how many were stopped, each counted once (a killed one may be found
+    again while it exits)."""
+    stopped = set()
     for _ in range(tries):
         found = [pid for pid in find() if pid != os.getpid()]
         if not found:
@@ -106,9 +107,9 @@ def stop_processes(find, tries=50, pause=0.1):
                 os.kill(pid, signal.SIGKILL)
             except (ProcessLookupError, PermissionError):
                 pass
-        stopped += len(found)
+        stopped.update(found)
         time.sleep(pause)
-    return stopped
+    return len(stopped)
 
 
 def stop_marked(mark):

@@ -15,9 +15,9 @@ def test_what_escaped_to_init_in_sessions_of_its_own_is_found_and_stopped_by_its
     subprocess.run(['setsid', '-f', 'sleep', '600'], env=env, check=True)
     subprocess.run(['setsid', '-f', 'bash', '-c', 'sleep 600 & sleep 600'], env=env, check=True)
     try:
-        wait_until(lambda: len(marked_processes(mark)) == 4, 10, 'the three sleeps and their bash')
-        assert sorted(command_line(pid).split(' ', 1)[1] for pid in marked_processes(mark)) == \
-            ['bash -c sleep 600 & sleep 600'] + ['sleep 600'] * 3
+        # Waited for by command line: a child bash has forked but not yet become its sleep for a moment.
+        wait_until(lambda: sorted(command_line(pid).split(' ', 1)[1] for pid in marked_processes(mark)) ==
+                   ['bash -c sleep 600 & sleep 600'] + ['sleep 600'] * 3, 10, 'the three sleeps and their bash')
         assert marked_processes(new_mark('COURSE_TEST_MARK')) == []   # another mark, none of them
     finally:
         assert stop_marked(mark) == 4
