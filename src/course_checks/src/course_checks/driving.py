@@ -5,7 +5,7 @@ import math
 from course_checks import figures
 from course_checks.rates import kept_rate
 from course_checks.robot import largest_move, travelled
-from course_checks.verdict import Verdict
+from course_checks.verdict import Verdict, decimal
 
 # Measurement constants of fake_tb3, not grading choices (those are the caller's, from the rubric):
 STILL_M = 1e-4        # fake_tb3's odometry has no noise: a robot standing still moves by rounding only
@@ -38,8 +38,8 @@ def circle_through(poses, radius, spawn, tolerance, min_travel):
     through_spawn = abs(math.hypot(cx - spawn[0], cy - spawn[1]) - radius)
     limit = tolerance * radius
     ok = abs(fitted - radius) <= limit and off <= limit and through_spawn <= limit
-    return Verdict(ok, 'a circle of radius %.3f m centred at (%.2f, %.2f), positions up to %.3f m off it' % (
-        fitted, cx, cy, off))
+    return Verdict(ok, 'a circle of radius %.3f m centred at (%s, %s), positions up to %.3f m off it' % (
+        fitted, decimal(cx, 2), decimal(cy, 2), off))
 
 
 def stopped_for(poses, seconds):

@@ -7,7 +7,7 @@ import numpy
 from turtlesim.msg import Pose
 
 from course_checks import figures, printed_poses, service_calls
-from course_checks.verdict import Verdict
+from course_checks.verdict import Verdict, decimal
 from course_testing.recording import TopicRecorder, path_length
 
 POSE_RATE_HZ = 62.5  # turtlesim publishes the pose at every 16 ms tick
@@ -147,9 +147,9 @@ def circle(points, centre, radius, tolerance):
     off_circle = numpy.abs(numpy.hypot(points[:, 0] - centre[0], points[:, 1] - centre[1]) - radius).max()
     limit = tolerance * radius
     ok = abs(fitted - radius) <= limit and off_centre < limit and off_circle < limit
-    return Verdict(ok, 'a circle of radius %.3f m centred at (%.3f, %.3f), %.3f m from the expected centre, '
+    return Verdict(ok, 'a circle of radius %.3f m centred at (%s, %s), %.3f m from the expected centre, '
                    'poses up to %.3f m off the expected circle (allowed %.3f m)' % (
-                       fitted, centre_x, centre_y, off_centre, off_circle, limit))
+                       fitted, decimal(centre_x, 3), decimal(centre_y, 3), off_centre, off_circle, limit))
 
 
 def printed_poses_published(printed, recorder):

@@ -2,6 +2,13 @@
 expected and what was seen, with numbers), and sentences about the usual mistakes (hints)."""
 
 
+def decimal(value, places):
+    """`value` written with `places` decimals, never as '-0.00' (a fit's centre at 0 may come out as
+    -1e-17, and which sign depends on the numpy of the machine)."""
+    text = '%.*f' % (places, value)
+    return text[1:] if text.lstrip('-0.') == '' and text.startswith('-') else text
+
+
 class Verdict:
     def __init__(self, passed, reason='', hints=()):
         self.passed = bool(passed)

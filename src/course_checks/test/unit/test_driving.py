@@ -5,6 +5,7 @@ import math
 from sensor_msgs.msg import LaserScan
 
 from course_checks import driving
+from course_checks.verdict import decimal
 
 
 def circle_poses(radius, centre, seconds=10.0, step=0.1):
@@ -68,3 +69,10 @@ def test_staying_means_no_collision_and_at_most_the_creep():
     creeping = [(t / 10, 1.0 + t * 0.01, 0.0, 0.0) for t in range(51)]
     assert not driving.stayed(creeping, 0, 0.11, 5).passed
     assert not driving.stayed(still[:30], 0, 0.11, 5).passed   # watched 2.9 s of 5
+
+
+def test_a_centre_at_zero_is_written_without_a_minus_sign_whatever_the_fit_rounds_to():
+    assert [decimal(value, 2) for value in (-1e-17, 0.0, -0.004, -0.05, -10.0, 3.14159)] == \
+        ['0.00', '0.00', '0.00', '-0.05', '-10.00', '3.14']
+    mirrored = driving.circle_through(circle_poses(1.0, (-1e-12, 1.0)), 1.0, (0.0, 0.0), 0.05, 0.1)
+    assert 'centred at (0.00, 1.00)' in mirrored.reason
