@@ -46,7 +46,13 @@ class MyTurtleViewTest(ViewInBrowser):
         self.assertEqual((command.linear.x, command.angular.z), (2.0, 0.0))
         moved = pose.wait_for(lambda p: p.x > start.x + 0.5, 10, 'the relay to drive turtle1 forward')
         self.assertAlmostEqual(moved.y, start.y, places=3)
-        self.wait_page_shows_turtle_at(pose.latest())
+        # Where it comes to rest (the relay's last command timed out, or the wall): while it moves, the
+        # page may already be past any pose read here.
+        def at_rest():
+            last_two = pose.messages(max(0, pose.count() - 2))
+            return (len(last_two) == 2 and last_two[0].x == last_two[1].x > moved.x) and last_two[1]
+        stopped = wait_until(at_rest, 20, 'turtle1 to come to rest')
+        self.wait_page_shows_turtle_at(stopped)
 
 
 if __name__ == '__main__':

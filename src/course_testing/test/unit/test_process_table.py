@@ -27,8 +27,9 @@ def test_what_escaped_to_init_in_sessions_of_its_own_is_found_and_stopped_by_its
 def test_the_processes_below_one_are_its_children_and_theirs():
     parent = subprocess.Popen(['bash', '-c', 'sleep 600 & sleep 600 & wait'])
     try:
-        wait_until(lambda: len(descendants(parent.pid)) == 2, 10, 'the two sleeps')
-        assert all(command_line(pid).endswith(' sleep 600') for pid in descendants(parent.pid))
+        # By command line: a forked bash is a bash until it execs its sleep.
+        wait_until(lambda: [command_line(pid).split(' ', 1)[1] for pid in descendants(parent.pid)] ==
+                   ['sleep 600'] * 2, 10, 'the two sleeps')
         assert parent.pid in descendants(os.getpid())
         assert set(descendants(parent.pid)) < set(descendants(os.getpid()))
     finally:
