@@ -2,13 +2,13 @@
 
 A page is sent a frame only when the previous one has left (the server asks for the next frame
 then), and the frame is made from the scenes as they are at that moment: a slow page skips states,
-it never gets a queue of old ones. Pages that have the same things get the same frame text, made
-once.
+it never gets a queue of old ones. Pages that have the same things get the same frame, made once:
+its text and its bytes on the wire (a websocket message).
 """
 import base64
 import threading
 
-from course_web.protocol import encode_frame
+from course_web.protocol import encode_frame, websocket_text_frame
 from course_web.tb3_scene import Tb3Scene
 from course_web.turtlesim_scene import TurtlesimScene, op_for_page
 
@@ -23,7 +23,7 @@ class Scenes:
         self.lock = threading.Lock()
         self.turtlesim = TurtlesimScene()
         self.tb3 = Tb3Scene()
-        self._made = {}  # cursor -> (frame text, cursor after it), for the current versions
+        self._made = {}  # cursor -> (frame text, its websocket message, cursor after it), for the current versions
         self._made_at = None
 
     def _cursor_now(self):
@@ -33,15 +33,26 @@ class Scenes:
 
     def frame_for(self, cursor):
         """(frame text or None if the page is up to date, the page's cursor after it)."""
+        made = self._made_for(cursor)
+        return (None, cursor) if made is None else (made[0], made[2])
+
+    def message_for(self, cursor):
+        """frame_for's frame as the bytes of a websocket message, the same object for every page."""
+        made = self._made_for(cursor)
+        return (None, cursor) if made is None else (made[1], made[2])
+
+    def _made_for(self, cursor):
         with self.lock:
             now = self._cursor_now()
             if now[:2] == cursor[:2] and now[3:5] == cursor[3:5]:
-                return None, cursor
+                return None
             if self._made_at != now:
                 self._made, self._made_at = {}, now
-            if cursor not in self._made:
-                self._made[cursor] = (encode_frame(self._frame(cursor)), now)
-            return self._made[cursor]
+            made = self._made.get(cursor)
+            if made is None:
+                text = encode_frame(self._frame(cursor))
+                made = self._made[cursor] = (text, websocket_text_frame(text), now)
+            return made
 
     def _frame(self, cursor):
         ts_generation, ts_version, ts_ops, tb_generation, tb_version, trail_end, scan_seq = cursor

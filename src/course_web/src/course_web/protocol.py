@@ -6,6 +6,7 @@ else (binary, oversized, not JSON, other fields, other keys) is a ProtocolError:
 that connection and logs one line.
 """
 import json
+import struct
 
 MAX_MESSAGE_BYTES = 128  # a key message is about 20 bytes
 # The web library itself refuses frames larger than this before they reach us (it closes with 1009).
@@ -45,3 +46,15 @@ def parse_client_message(data):
 def encode_frame(parts):
     """One frame for the page: a JSON object text, compact."""
     return json.dumps(parts, separators=(',', ':'), allow_nan=False)
+
+
+def websocket_text_frame(text):
+    """A frame's text as the bytes of one websocket text message from a server (RFC 6455 5.2: FIN
+    and opcode 1, the length in 7, 16 or 64 bits, no mask), made once for every page that gets it."""
+    data = text.encode('utf-8')
+    size = len(data)
+    if size < 126:
+        return bytes((0x81, size)) + data
+    if size < 1 << 16:
+        return struct.pack('!BBH', 0x81, 126, size) + data
+    return struct.pack('!BBQ', 0x81, 127, size) + data

@@ -139,7 +139,20 @@ class RosView:
                                                      self.on_scene, queue_size=100)
 
     def _look_at_master(self):
-        """Which node is turtlesim, and whether fake_tb3 runs (one question to the master)."""
+        """Which node is turtlesim, and whether fake_tb3 runs (one question to the master). While
+        turtlesim is connected and fake_tb3 is listed (or has no node), a look at fake_tb3's node
+        alone is enough: the whole state of a master with 100 turtles is a large answer to parse."""
+        if self.turtlesim_shown:
+            try:
+                self.master.lookupNode(self.fake_tb3_node)
+                fake_tb3_up = True
+            except rosgraph.MasterError:
+                fake_tb3_up = False
+            except Exception:  # no master at the moment: the connections tell what is gone
+                return
+            if not fake_tb3_up or self.fake_tb3_listed:
+                self.fake_tb3_listed = fake_tb3_up
+                return
         try:
             publishers = self.master.getSystemState()[0]
         except Exception:  # no master at the moment: the connections tell what is gone

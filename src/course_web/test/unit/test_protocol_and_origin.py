@@ -1,11 +1,12 @@
 """What a page may send, who may connect, and how fast keys may come (pure, milliseconds)."""
 import json
+import struct
 
 import pytest
 
 from course_web.origin import host_allowed, origin_allowed
 from course_web.pacing import KeyBudget
-from course_web.protocol import MAX_MESSAGE_BYTES, ProtocolError, parse_client_message
+from course_web.protocol import MAX_MESSAGE_BYTES, ProtocolError, parse_client_message, websocket_text_frame
 
 
 @pytest.mark.parametrize('key', ['ArrowUp', 'ArrowDown', 'ArrowLeft', 'ArrowRight', 'w', 'a', 's', 'd', 'x', ' '])
@@ -72,3 +73,21 @@ def test_a_held_key_passes_and_a_flood_does_not():
     passed = sum(flood.allow(1.0 + i * 1e-4) for i in range(10000))  # 10 000 presses in 1 s
     assert 40 <= passed <= 85
     assert flood.refused == 10000 - passed
+
+
+def read_websocket_message(data):
+    """(FIN, opcode, masked, payload) of one websocket message, as RFC 6455 5.2 lays it out."""
+    fin, opcode, masked, size = data[0] >> 7, data[0] & 0x0f, data[1] >> 7, data[1] & 0x7f
+    start = 2
+    if size == 126:
+        size, start = struct.unpack('!H', data[2:4])[0], 4
+    elif size == 127:
+        size, start = struct.unpack('!Q', data[2:10])[0], 10
+    assert len(data) == start + size  # nothing before or after the message
+    return fin, opcode, masked, data[start:]
+
+
+@pytest.mark.parametrize('text', ['', '{"a":1}', 'x' * 125, 'é' * 63, 'y' * 126, 'z' * 65535, 'w' * 65536,
+                                  '{"scan":[%s]}' % ','.join(['[1.234,-5.678]'] * 10000)])
+def test_a_frame_goes_out_as_one_websocket_text_message(text):
+    assert read_websocket_message(websocket_text_frame(text)) == (1, 1, 0, text.encode('utf-8'))

@@ -90,6 +90,9 @@ def test_pages_get_everything_once_then_only_what_changed():
     assert first['tb3'] == {'present': False}
     assert scenes.frame_for(cursor) == (None, cursor)  # nothing new
     assert scenes.frame_for(NEW_PAGE)[0] is text  # a second new page: the same text, made once
+    message = scenes.message_for(NEW_PAGE)[0]  # and the same websocket message
+    assert message is scenes.message_for(NEW_PAGE)[0] and message.endswith(text.encode())
+    assert scenes.message_for(cursor) == (None, cursor)
     scenes.turtlesim.apply({'seq': 2, 'stamp': 2.0, 'ops': [['line', 1, 2, 3, 4, 5, 6, 7, 2]],
                             'turtles': [['turtle1', 5.6, 5.5, 0.0, 0]]})
     text, cursor = scenes.frame_for(cursor)
