@@ -5,16 +5,11 @@ Usage: run_test_jobs.py --jobs N|auto --logs DIR --times FILE [--first-times FIL
 JOBS has one job per line: `label<TAB>exit codes that mean "ran, results written"<TAB>alone|shared
 <TAB>shell command`, e.g. `rostest fake_tb3/test/rviz.test<TAB>0,1,2<TAB>shared<TAB>rostest ...`.
 Each rostest starts its own master on a free port, so independent .test files may run side by side.
-`alone` jobs run first, one at a time, and never beside another job of normal priority: tests that
-measure wall-clock rates and latencies (a 30 Hz topic's longest gap), which a second test on a
-2-core machine would disturb. The others run N at a time; `--jobs auto` runs two, and a third while
-a whole core has been idle for the last few seconds (most steps wait for robots moving in real time,
-so on a quiet machine a third fits; on a shared or loaded one it does not start). Those that start
-while `alone` jobs are still to run, run in the background beside them: at Linux's idle scheduling
-priority (SCHED_IDLE), which gets a core only when no other program wants it, so that the `alone`
-job's processes run at once whenever they wake; once the last `alone` job has ended, they get the
-normal priority back where the system allows it (root). Where the system refuses SCHED_IDLE, or
-with --jobs 1, nothing runs beside an `alone` job.
+`alone` jobs run first, one at a time with nothing beside them: tests that measure wall-clock rates
+and latencies (a 30 Hz topic's longest gap), which a second test on a 2-core machine would disturb.
+The others run N at a time; `--jobs auto` runs two, and a third while a whole core has been idle
+for the last few seconds (most steps wait for robots moving in real time, so on a quiet machine a
+third fits; on a shared or loaded one it does not start).
 
 Prints one line per job as it ends (label, seconds, exit status), and under a job that failed the
 lines of its log that say why. Each job's whole output goes to DIR/<label>.log. The durations are
@@ -108,63 +103,6 @@ class SideBySide:
         return idle_cores(before[1], self.since[1], self.cores) >= 1.0
 
 
-def background_allowed():
-    """Whether this system lets a program put itself at idle scheduling priority (tried in a child:
-    without privilege a process cannot take it back)."""
-    if not hasattr(os, 'SCHED_IDLE'):
-        return False
-    child = os.fork()
-    if child == 0:
-        try:
-            os.sched_setscheduler(0, os.SCHED_IDLE, os.sched_param(0))
-        except OSError:
-            os._exit(1)
-        os._exit(0)
-    return os.waitpid(child, 0)[1] == 0
-
-
-def start_in_background():
-    """preexec_fn of a job started beside an `alone` one: idle priority, inherited by all it starts."""
-    restore_ctrl_c()
-    os.sched_setscheduler(0, os.SCHED_IDLE, os.sched_param(0))
-
-
-def bring_to_front(mark):
-    """Normal scheduling for every thread of the processes that carry `mark` (where this process may
-    raise them: root); the others stay at idle priority."""
-    for pid in marked_processes(mark):
-        try:
-            threads = [int(tid) for tid in os.listdir('/proc/%d/task' % pid)]
-        except OSError:
-            continue
-        for tid in threads:
-            try:
-                os.sched_setscheduler(tid, os.SCHED_OTHER, os.sched_param(0))
-            except OSError:
-                pass
-
-
-def alone_left(waiting, running):
-    """Whether an `alone` job runs or is still to run."""
-    return any(entry[3] for entry in running.values()) or any(job[2] for job in waiting)
-
-
-def next_job(waiting, running, side_by_side, background):
-    """The index in `waiting` of the job to start now, or None: the first `alone` job once the one
-    before it has ended (and, without background jobs, once everything else has), else the first
-    of the others while there is room for it (in the background while `alone` jobs are left)."""
-    alone_running = sum(1 for entry in running.values() if entry[3])
-    for index, job in enumerate(waiting):
-        if job[2]:
-            if not alone_running and (background or not running):
-                return index
-            continue
-        if alone_left(waiting, running):
-            return index if background and side_by_side.room(len(running) - alone_running) else None
-        return index if side_by_side.room(len(running)) else None
-    return None
-
-
 def left_running(mark, grace=5.0):
     """What still runs with `mark` in its environment once `grace` seconds have passed (a node may
     still be saving its picture as its roslaunch ends), as command lines; then stops it."""
@@ -194,25 +132,23 @@ def main():
     jobs.sort(key=lambda job: (not job[2], -known.get(job[0], float('inf'))))
     os.makedirs(options.logs, exist_ok=True)
     side_by_side = SideBySide(options.jobs, os.cpu_count() or 1)
-    background = options.jobs != 1 and background_allowed()
     widest = 0
     waiting, running, failed_steps, times = list(jobs), {}, [], dict(known)
     while waiting or running:
         while waiting:
-            index = next_job(waiting, running, side_by_side, background)
-            if index is None:
+            if running and (waiting[0][2] or any(entry[3] for entry in running.values())):
+                break  # an `alone` job waits for the others to end, and keeps the machine to itself
+            if not side_by_side.room(len(running)):
                 break
-            label, codes, alone, command = waiting.pop(index)
-            in_background = not alone and alone_left(waiting, running)
+            label, codes, alone, command = waiting.pop(0)
             log = open(log_name(options.logs, label), 'w')
             mark = new_mark('COURSE_TEST_STEP')
             # SIGINT and SIGQUIT as in a terminal: when test.sh runs in the background (`./test.sh &`,
             # a CI runner), every program inherits both ignored, and the tests' roscore and roslaunch
             # would ignore the SIGINT that stops them (tests/network/ took 181 s instead of 90).
             process = subprocess.Popen(['bash', '-c', command], stdout=log, stderr=subprocess.STDOUT,
-                                       stdin=subprocess.DEVNULL, env=with_mark(mark),
-                                       preexec_fn=start_in_background if in_background else restore_ctrl_c)
-            running[process.pid] = (process, label, codes, alone, log, time.monotonic(), mark, in_background)
+                                       stdin=subprocess.DEVNULL, env=with_mark(mark), preexec_fn=restore_ctrl_c)
+            running[process.pid] = (process, label, codes, alone, log, time.monotonic(), mark)
             side_by_side.started()
             widest = max(widest, len(running))
         # With jobs waiting for an idle core, look again every half second.
@@ -222,12 +158,7 @@ def main():
             continue
         if pid not in running:
             continue
-        process, label, codes, _, log, start, mark, _ = running.pop(pid)
-        if not alone_left(waiting, running):  # the last `alone` job ended: no background any more
-            for entry in list(running.values()):
-                if entry[7]:
-                    bring_to_front(entry[6])
-                    running[entry[0].pid] = entry[:7] + (False,)
+        process, label, codes, _, log, start, mark = running.pop(pid)
         log.close()
         code = os.waitstatus_to_exitcode(status) if hasattr(os, 'waitstatus_to_exitcode') else status >> 8
         process.returncode = code
