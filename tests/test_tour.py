@@ -85,7 +85,8 @@ def test_the_summary_gives_distances_stop_distance_and_no_collision(tour):
     assert re.search(r'my_turtle_pose printed (\d+) pose lines', summary)
     assert re.search(r'square of 3 m sides: 12\.\d\d m driven, closed within 0\.0[0-4]\d m', summary)
     assert re.search(r'triangle of 3 m sides: 9\.\d\d m driven, closed within 0\.0[0-4]\d m', summary)
-    stop = float(re.search(r'stopped ([\d.]+) m from the wall; collisions: 0', summary).group(1))
+    stop = float(re.search(r'stopped ([\d.]+) m from the wall \(front beam, median over the stop\); collisions: 0',
+                           summary).group(1))
     assert 0.35 <= stop <= 0.5
     wandered = float(re.search(r'wander.py drove ([\d.]+) m in 120 simulated seconds .*; collisions: 0',
                                summary).group(1))

@@ -16,7 +16,7 @@ lines of its log that say why. Each job's whole output goes to DIR/<label>.log. 
 kept in FILE, so that the next run starts the longest jobs first (on a first run, those of
 --first-times, measured once on a 2-core machine; jobs unknown to both come first). A job that ends
 with any other exit status is written to --failed-steps, one per line: its results are not to be
-trusted (pytest exit 5: it collected no tests). So is a job that leaves processes running: each job's
+trusted (a pytest job's exit 5: it collected no tests). So is a job that leaves processes running: each job's
 environment carries a mark of its own, and what still carries it a few seconds after the job ended
 (a node in a session of its own, reparented to init, that no process group reaches) is named, then
 killed.
@@ -173,7 +173,9 @@ def main():
                     if WHY.search(line):
                         print('      ' + line.rstrip()[:300])
             print('      whole log: %s' % log_name(options.logs, label), flush=True)
-        if code not in codes:
+        if code not in codes and code == 5 and label.startswith('pytest '):
+            failed_steps.append('%s collected no tests (exit 5)' % label)
+        elif code not in codes:
             failed_steps.append('%s (exit %d: its results cannot be trusted; log %s)'
                                 % (label, code, log_name(options.logs, label)))
         if left:

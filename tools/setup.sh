@@ -61,19 +61,28 @@ suite_packages() {
     done < "$PACKAGE_LIST"
 }
 
+# Those of the packages named that are not installed (one dpkg-query for all of them).
 missing_packages() {
-    local pkg
+    [ $# -gt 0 ] || return 0
+    local installed pkg
+    installed=" $(dpkg-query -W -f='${Status} ${Package}\n' "$@" 2>/dev/null \
+                  | sed -n 's/^install ok installed //p' | tr '\n' ' ')"
     for pkg in "$@"; do
-        dpkg-query -W -f='${Status}\n' "$pkg" 2>/dev/null | grep -q "install ok installed" || echo "$pkg"
+        case "$installed" in *" $pkg "*) ;; *) echo "$pkg" ;; esac
     done
 }
 
-# The packages apt has no candidate for (with apt's lists as they are now).
+# Those of the packages named that apt has no candidate for, with apt's lists as they are now (one
+# apt-cache call for all of them; it prints a block `name:` ... `  Candidate: version` for each
+# package it knows).
 unavailable_packages() {
-    local pkg candidate
+    [ $# -gt 0 ] || return 0
+    local available pkg
+    available=" $(apt-cache policy "$@" 2>/dev/null \
+                  | awk '/^[^ ]/ { name = $1; sub(/:$/, "", name) }
+                         /^ +Candidate:/ && $2 != "(none)" { print name }' | tr '\n' ' ')"
     for pkg in "$@"; do
-        candidate=$(apt-cache policy "$pkg" 2>/dev/null | sed -n 's/^ *Candidate: *//p')
-        if [ -z "$candidate" ] || [ "$candidate" = "(none)" ]; then echo "$pkg"; fi
+        case "$available" in *" $pkg "*) ;; *) echo "$pkg" ;; esac
     done
 }
 

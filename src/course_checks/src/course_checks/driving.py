@@ -48,11 +48,17 @@ def stopped_for(poses, seconds):
     return recent[0][0] <= poses[-1][0] - seconds + STILL_SLACK_S and largest_move(recent) < STILL_M
 
 
+def front_median(scans, seconds):
+    """The front beam's median over the scans of the last `seconds` (three at least): one noisy
+    reading does not decide."""
+    fronts = sorted(scan.ranges[0] for scan in scans[-max(3, int(seconds * SCAN_HZ)):])
+    return fronts[len(fronts) // 2]
+
+
 def front_at_stop(scans, stay_seconds, low, high):
-    """The front beam (the median over the scans of the stay_seconds watched after the stop: one
-    noisy reading does not decide) is between low and high metres."""
-    fronts = sorted(scan.ranges[0] for scan in scans[-max(3, int(stay_seconds * SCAN_HZ)):])
-    front = fronts[len(fronts) // 2]
+    """The front beam (the median over the scans of the stay_seconds watched after the stop) is
+    between low and high metres."""
+    front = front_median(scans, stay_seconds)
     return Verdict(low <= front <= high, 'stopped with the front beam at %.3f m (median over the stop)' % front)
 
 

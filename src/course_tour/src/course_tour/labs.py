@@ -12,6 +12,7 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import UInt32
 from turtlesim.msg import Pose
 
+from course_checks import driving
 from course_testing.processes import PtyProgram
 from course_testing.recording import TopicRecorder, path_length
 from course_testing.screen import VirtualScreen, can_make_screens, red_pixels
@@ -147,25 +148,33 @@ def turtlebot3_laser(session):
                       '359: %s (inf: nothing within 3.5 m)' % tuple([len(blocks)] + last)], [])
 
 
+# Simulated seconds the robot stands still before the tour reads the front beam: the median of
+# these 10 scans, as the grader judges the stop (course_checks.driving), not one noisy reading.
+STOP_WATCH_S = 2.0
+
+
 def turtlebot3_avoid(session):
     """001: avoid_obstacle.py drives at the wall and stops; wander.py roams 120 simulated seconds."""
     scans, odoms = TopicRecorder('/scan', LaserScan), TopicRecorder('/odom', Odometry)
     collisions = TopicRecorder('/collisions', UInt32)
     launched = session.launch('move_turtlebot3', 'avoid_obstacle.launch')
 
-    def stopped_at_the_wall():
-        last_scans, last_odoms = scans.messages()[-2:], odoms.messages()[-1:]
-        return (len(last_scans) == 2 and last_odoms and path_length(_odom_points(odoms)) > 1.0
-                and all(scan.ranges[0] <= 0.5 for scan in last_scans)
-                and last_odoms[0].twist.twist.linear.x == 0.0)
+    def poses():
+        return [(odom.header.stamp.to_sec(), odom.pose.pose.position.x, odom.pose.pose.position.y, 0.0)
+                for odom in odoms.messages()]
 
-    wait_until(stopped_at_the_wall, 60, 'avoid_obstacle to stop in front of the wall')
-    front = scans.messages()[-1].ranges[0]
+    def stopped_at_the_wall():
+        return (scans.messages() and scans.messages()[-1].ranges[0] <= 0.5 and len(poses()) > 1
+                and path_length(_odom_points(odoms)) > 1.0 and driving.stopped_for(poses(), STOP_WATCH_S))
+
+    wait_until(stopped_at_the_wall, 60, 'avoid_obstacle to stop in front of the wall for %g simulated seconds'
+               % STOP_WATCH_S)
+    front = driving.front_median(scans.messages(), STOP_WATCH_S)
     driven = path_length(_odom_points(odoms))
     hits = _collisions(collisions)
     session.stop(launched)
-    lines = ['avoid_obstacle drove %.2f m and stopped %.3f m from the wall; collisions: %d'
-             % (driven, front, hits)]
+    lines = ['avoid_obstacle drove %.2f m and stopped %.3f m from the wall (front beam, median over the stop); '
+             'collisions: %d' % (driven, front, hits)]
 
     odoms.clear()
     clock = TopicRecorder('/clock', Clock)
