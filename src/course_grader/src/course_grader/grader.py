@@ -226,7 +226,7 @@ class Grader:
         return args
 
     def _run_in_container(self, submission, package, student, staging):
-        """The trusted side (the session, roscore, the simulators) as root without privileges, the
+        """The trusted side (the session, the ROS master, the simulators) as root without privileges, the
         student's side as `student`; the result comes back on the container's standard output."""
         name = 'course-grader-%s-%s-%s' % (self.run_id, ascii_name(student)[:40], uuid.uuid4().hex[:6])
         rubric_mount = ['-v', '%s:/rubric.yaml:ro' % os.path.abspath(self.args.rubric)] if self.args.rubric else []

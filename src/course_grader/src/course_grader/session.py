@@ -1,11 +1,11 @@
-"""The grading of one submission, inside its sandbox: the trusted side (this process, roscore, the
-simulators, the checks, with the course's environment only) and the student's side (the build and
+"""The grading of one submission, inside its sandbox: the trusted side (this process, the ROS master,
+the simulators, the checks, with the course's environment only) and the student's side (the build and
 the student's nodes, with the student's overlay, as another user when the sandbox allows it) stand
 apart; only the trusted side writes the result, logs and pictures.
 
 In a container this process runs as root with no capability but to switch users and to stop the
 student's processes, and the student's side runs as the user `student`: it cannot write the output
-folder, nor signal or trace this process, roscore or the simulators. The result leaves as a tar
+folder, nor signal or trace this process, the master or the simulators. The result leaves as a tar
 stream on this process's standard output, which no process of the student's holds."""
 import argparse
 import os
