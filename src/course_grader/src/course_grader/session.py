@@ -12,8 +12,8 @@ import os
 import pwd
 import subprocess
 import sys
+import functools
 import tarfile
-import threading
 import time
 import uuid
 from concurrent.futures import ThreadPoolExecutor
@@ -21,6 +21,7 @@ from concurrent.futures import ThreadPoolExecutor
 from course_checks.launch import Launch
 from course_grader import feedback, labs, results, rubric as rubrics
 from course_testing.process_table import stop_user
+from course_testing.processes import together
 from course_testing.waiting import poll_until
 from course_grader.results import Verdict
 
@@ -170,10 +171,7 @@ class Master:
     def stop(self):
         import rospy
         # Together: rospy's own shutdown waits on its threads for half a second.
-        master = threading.Thread(target=self.process.stop, args=(15,))
-        master.start()
-        rospy.signal_shutdown('graded')
-        master.join()
+        together(functools.partial(rospy.signal_shutdown, 'graded'), functools.partial(self.process.stop, 15))
 
 
 def grade(rubric, package_dir, out_dir, scratch, student, student_user=None, only=None):

@@ -1,7 +1,7 @@
 """The TurtleBot3 lab (seed 001): trajectory.py, laser_data.py, avoid_obstacle.py on fake_tb3, with
 the checks of course_checks that move_turtlebot3's own tests use."""
+import functools
 import math
-import threading
 
 import roslib.packages
 import rospy
@@ -12,6 +12,7 @@ from course_checks.verdict import Verdict
 from course_checks.waiting import Deadline
 from course_grader import feedback
 from course_grader.labs.common import StudentNode, faked, run_each
+from course_testing.processes import together
 
 SIMULATION = ('script', 'world', 'x_pos', 'y_pos', 'noise_stddev', 'noise_seed', 'real_time_factor')
 CRITERIA = {
@@ -100,10 +101,7 @@ class Run:
         self.stopped = True
         self.sim_ended = self.sim.ended()
         # The node and the simulator stop together (fake_tb3 saves its picture as it stops).
-        simulator = threading.Thread(target=self.sim.stop, args=(15,))
-        simulator.start()
-        self.node.stop()
-        simulator.join()
+        together(self.node.stop, functools.partial(self.sim.stop, 15))
         self.watch.close()
 
 
