@@ -24,6 +24,8 @@ from course_testing.waiting import poll_until
 MARKER = '.course_grader'            # in --out: the folder is the grader's (it may empty it)
 RUN_MARK = 'COURSE_GRADER_RUN'       # in the environment of everything a --no-container session starts
 MAX_COPIED_BYTES = 50 * 2 ** 20      # of what one sandbox leaves in its output folder
+# The grading session (grade_submission), by its module: rosrun's look-up costs half a second.
+SESSION = ['/usr/bin/python3', '-m', 'course_grader.session']
 STEP_PREFIX = 'grade_submission: '   # a line of the session that reports a step and its time
 # The trusted side of a container is root with no capability but these: start the student's side
 # as the user `student`, and stop it. No write access anywhere else, no other user's processes.
@@ -224,7 +226,7 @@ class Grader:
         return args
 
     def _run_in_container(self, submission, package, student, staging):
-        """The trusted side (the session, roscore, the simulators) as root without privileges, the
+        """The trusted side (the session, the ROS master, the simulators) as root without privileges, the
         student's side as `student`; the result comes back on the container's standard output."""
         name = 'course-grader-%s-%s-%s' % (self.run_id, ascii_name(student)[:40], uuid.uuid4().hex[:6])
         rubric_mount = ['-v', '%s:/rubric.yaml:ro' % os.path.abspath(self.args.rubric)] if self.args.rubric else []
@@ -234,8 +236,8 @@ class Grader:
                    '--read-only', '--security-opt', 'no-new-privileges'] + TRUSTED_CAPABILITIES + [
                    '-e', 'HOME=/grader', '-e', 'ROS_HOME=/grader/ros',
                    '-v', '%s:/submission:ro' % submission] + rubric_mount + CONTAINER_LIMITS + [
-                   self.args.image, 'bash', '-c', 'source tools/env.sh && exec '
-                   'rosrun course_grader grade_submission "$@"', 'grade_submission', '--student-user', 'student',
+                   self.args.image, 'bash', '-c', 'source tools/env.sh && exec ' + ' '.join(SESSION) + ' "$@"',
+                   'grade_submission', '--student-user', 'student',
                    '--send'] + self._session_args('/submission/' + package, '/grader/out', '/tmp/student', student)
 
         def stop(process):   # whatever happened: the container and everything in it are gone
@@ -261,7 +263,7 @@ class Grader:
         # from the grader's scratch (the submission, what comes back).
         session_out = tempfile.mkdtemp(prefix='course-grader-session-')
         student_scratch = tempfile.mkdtemp(prefix='course-grader-student-')
-        argv = ['rosrun', 'course_grader', 'grade_submission', '--send'] + self._session_args(
+        argv = SESSION + ['--send'] + self._session_args(
             os.path.join(submission, package), session_out, student_scratch, student)
 
         def stop(process):

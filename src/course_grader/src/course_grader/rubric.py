@@ -4,7 +4,7 @@ import os
 import rospkg
 import yaml
 
-from course_grader.labs import LABS
+from course_grader.labs import LABS, lab_module
 
 LIMITS = ('build_seconds', 'run_seconds', 'start_seconds', 'stop_seconds')
 
@@ -114,6 +114,6 @@ def load(lab_or_path):
     rubric = Rubric(data, path)
     if rubric.lab not in LABS:
         raise RubricError('%s: lab %r is none of the grader\'s (%s)' % (path, rubric.lab, ', '.join(sorted(LABS))))
-    lab = LABS[rubric.lab]
+    lab = lab_module(rubric.lab)
     rubric.check_against(lab.CRITERIA, lab.__name__)
     return rubric

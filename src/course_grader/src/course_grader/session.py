@@ -1,23 +1,28 @@
-"""The grading of one submission, inside its sandbox: the trusted side (this process, roscore, the
-simulators, the checks, with the course's environment only) and the student's side (the build and
+"""The grading of one submission, inside its sandbox: the trusted side (this process, the ROS master,
+the simulators, the checks, with the course's environment only) and the student's side (the build and
 the student's nodes, with the student's overlay, as another user when the sandbox allows it) stand
 apart; only the trusted side writes the result, logs and pictures.
 
 In a container this process runs as root with no capability but to switch users and to stop the
 student's processes, and the student's side runs as the user `student`: it cannot write the output
-folder, nor signal or trace this process, roscore or the simulators. The result leaves as a tar
+folder, nor signal or trace this process, the master or the simulators. The result leaves as a tar
 stream on this process's standard output, which no process of the student's holds."""
 import argparse
 import os
 import pwd
 import subprocess
 import sys
+import functools
 import tarfile
 import time
+import uuid
+from concurrent.futures import ThreadPoolExecutor
 
 from course_checks.launch import Launch
 from course_grader import feedback, labs, results, rubric as rubrics
 from course_testing.process_table import stop_user
+from course_testing.processes import together
+from course_testing.waiting import poll_until
 from course_grader.results import Verdict
 
 
@@ -132,59 +137,82 @@ class BuildFailed(Exception):
 
 
 class Master:
-    """A roscore of our own on a free port (and the grader's own rospy node on it)."""
+    """A ROS master of our own on a free port: rosmaster alone (roscore's roslaunch and rosout
+    cost a second at the start and more at the end, and nothing of the grading reads /rosout),
+    started at once so that it comes up while the student's package builds; ready() waits for it
+    and starts the grader's own rospy node on it."""
 
     def __init__(self, log_path):
         from course_testing.processes import free_port
-        import rosgraph
         self.port = free_port()
-        os.environ['ROS_MASTER_URI'] = 'http://localhost:%d' % self.port
-        self.roscore = Launch(['roscore', '-p', str(self.port)], log_path)
-        deadline = time.monotonic() + 60
-        master = rosgraph.Master('/course_grader')
-        while True:
-            try:
-                master.getParam('/run_id')
-                break
-            except Exception:
-                if time.monotonic() > deadline or self.roscore.ended():
-                    raise RuntimeError('roscore did not start on port %d' % self.port)
-                time.sleep(0.1)
-        master.setParam('/use_sim_time', False)
+        self.uri = 'http://localhost:%d' % self.port
+        self.process = Launch(['rosmaster', '--core', '-p', str(self.port)], log_path)
+
+    def ready(self):
+        import rosgraph
         import rospy
+        os.environ['ROS_MASTER_URI'] = self.uri
+        master = rosgraph.Master('/course_grader')
+        if not poll_until(lambda: self.process.ended() or self._answers(master), 60, poll=0.05) \
+                or self.process.ended():
+            raise RuntimeError('the ROS master did not start on port %d' % self.port)
+        master.setParam('/run_id', str(uuid.uuid1()))   # as roscore sets it (roslaunch reads it)
+        master.setParam('/use_sim_time', False)
         rospy.init_node('course_grader', disable_signals=True)
+
+    @staticmethod
+    def _answers(master):
+        try:
+            master.getPid()
+            return True
+        except Exception:   # noqa: B902 (not yet)
+            return False
 
     def stop(self):
         import rospy
-        rospy.signal_shutdown('graded')
-        self.roscore.stop(15)
+        # Together: rospy's own shutdown waits on its threads for half a second.
+        together(functools.partial(rospy.signal_shutdown, 'graded'), functools.partial(self.process.stop, 15))
 
 
 def grade(rubric, package_dir, out_dir, scratch, student, student_user=None, only=None):
     started = time.monotonic()
-    side = StudentSide(student_user, scratch)
+    side = StudentSide(student_user, scratch)   # its environment made before the master's URI is ours
     session = Session(rubric, package_dir, out_dir, side, only)
-    lab = labs.LABS[rubric.lab]
+    lab = labs.lab_module(rubric.lab)
     outcomes = dict(lab.static_checks(session))
+    master = Master(os.path.join(out_dir, 'roscore.txt'))
     try:
-        overlay_env = build(session, scratch)
+        # The build on a thread of its own: the master comes up meanwhile.
+        with ThreadPoolExecutor(max_workers=1) as pool:
+            building = pool.submit(build, session, scratch)
+            try:
+                master.ready()
+            finally:
+                overlay_env = building.result()
     except BuildFailed as error:
         side.stop_all()
+        master.stop()
         outcomes['builds'] = Verdict(False, str(error))
         return results.score(rubric, outcomes, student, error='not run: the package does not build',
                              seconds=time.monotonic() - started)
+    except BaseException:
+        master.stop()
+        raise
     side.stop_all()
     print('grade_submission: built in %.1f s' % (time.monotonic() - started), flush=True)
     outcomes['builds'] = Verdict(True, 'catkin_make built it')
-    master = Master(os.path.join(out_dir, 'roscore.txt'))
     # Only the student's side gets the overlay (and the master): the trusted side keeps the course's.
-    side.env = dict(overlay_env, ROS_MASTER_URI=os.environ['ROS_MASTER_URI'], HOME=side.home,
+    side.env = dict(overlay_env, ROS_MASTER_URI=master.uri, HOME=side.home,
                     ROS_HOME=side.env['ROS_HOME'], PYTHONDONTWRITEBYTECODE='1', ROSCONSOLE_STDOUT_LINE_BUFFERED='1')
+    error = None
     try:
-        outcomes.update(lab.run_checks(session))
+        if master.process.ended():   # a process of the build shut it down (it could reach it)
+            error = 'not run: the ROS master stopped during the build'
+        else:
+            outcomes.update(lab.run_checks(session))
     finally:
         master.stop()
-    return results.score(rubric, outcomes, student, pictures=session.pictures,
+    return results.score(rubric, outcomes, student, error=error, pictures=session.pictures,
                          seconds=time.monotonic() - started)
 
 

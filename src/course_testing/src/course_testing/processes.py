@@ -75,6 +75,23 @@ def stop_process_group(process, timeout=15.0):
     return process.returncode
 
 
+def together(*calls):
+    """Call each function at once, each on a thread, and return when all have returned; one after
+    the other when no thread can start (a sandbox whose processes a fork bomb took)."""
+    threads = []
+    for call in calls[1:]:
+        thread = threading.Thread(target=call)
+        try:
+            thread.start()
+        except RuntimeError:   # can't start new thread
+            call()
+            continue
+        threads.append(thread)
+    calls[0]()
+    for thread in threads:
+        thread.join()
+
+
 class PtyProgram:
     """A program whose standard input and output are a pseudo-terminal, as if a user typed."""
 

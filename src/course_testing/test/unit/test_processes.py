@@ -3,9 +3,11 @@ import signal
 import socket
 import subprocess
 import sys
+import threading
 
 from course_testing.process_table import command_line, user_processes
-from course_testing.processes import ReadPtyProgram, free_port, ignored_signals, port_open, run, stop_process_group
+from course_testing.processes import (ReadPtyProgram, free_port, ignored_signals, port_open, run, stop_process_group,
+                                      together)
 from course_testing.waiting import wait_until
 
 TRAPS_SIGINT = '''
@@ -140,3 +142,25 @@ def test_on_sigterm_and_sighup_a_program_runs_its_finally_blocks():
             finally:
                 if handled == 'default':
                     os.kill(child, signal.SIGKILL)
+
+
+def test_together_runs_the_calls_at_once_and_each_alone_when_no_thread_starts(monkeypatch):
+    first, second = threading.Event(), threading.Event()
+    seen = []
+
+    def one():   # each waits for the other: only calls made at once both see it
+        first.set()
+        seen.append(second.wait(5))
+
+    def other():
+        second.set()
+        seen.append(first.wait(5))
+    together(one, other)
+    assert seen == [True, True]
+
+    def no_thread(self):
+        raise RuntimeError("can't start new thread")
+    monkeypatch.setattr(threading.Thread, 'start', no_thread)
+    order = []
+    together(lambda: order.append('first'), lambda: order.append('second'))
+    assert sorted(order) == ['first', 'second']

@@ -1,7 +1,9 @@
 """The TurtleBot3 lab (seed 001): trajectory.py, laser_data.py, avoid_obstacle.py on fake_tb3, with
 the checks of course_checks that move_turtlebot3's own tests use."""
+import functools
 import math
 
+import roslib.packages
 import rospy
 
 from course_checks import driving, laser, service_calls
@@ -10,6 +12,7 @@ from course_checks.verdict import Verdict
 from course_checks.waiting import Deadline
 from course_grader import feedback
 from course_grader.labs.common import StudentNode, faked, run_each
+from course_testing.processes import together
 
 SIMULATION = ('script', 'world', 'x_pos', 'y_pos', 'noise_stddev', 'noise_seed', 'real_time_factor')
 CRITERIA = {
@@ -22,6 +25,8 @@ CRITERIA = {
     'avoid_stops': SIMULATION + ('min_drive', 'stopped_seconds', 'front_min', 'front_max'),
     'avoid_stays': ('stay_seconds', 'max_creep'),
 }
+# What fake_tb3's world.launch gives the node beside a run's own settings.
+LAUNCH_DEFAULTS = {'cmd_vel_timeout': 0, 'clamp_speed': False, 'picture_png': '', 'robots': []}
 
 
 def static_checks(session):
@@ -55,11 +60,16 @@ class Run:
         if picture:
             sim_args['picture_png'] = session.picture(picture)
         # fake_tb3 is the course's: it runs on the trusted side, with the course's environment, and
-        # with no parameter a node of the submission set in an earlier run (a rate, say).
+        # with no parameter a node of the submission set in an earlier run (a rate, say). Started as
+        # its executable with the parameters world.launch would set (roslaunch's own start and stop
+        # cost about a second each per run).
         if rospy.has_param(SIMULATOR):
             rospy.delete_param(SIMULATOR)
-        self.sim = session.trusted(['roslaunch', 'fake_tb3', 'world.launch'] + [
-            '%s:=%s' % item for item in sorted(sim_args.items())], self.sim_log)
+        rospy.set_param('/use_sim_time', True)
+        for name, value in sorted(dict(LAUNCH_DEFAULTS, **sim_args).items()):
+            rospy.set_param('%s/%s' % (SIMULATOR, name), value)
+        executable = roslib.packages.find_node('fake_tb3', 'fake_tb3_node')[0]
+        self.sim = session.trusted([executable, '__name:=' + SIMULATOR.lstrip('/')], self.sim_log)
         if not self.deadline.wait(self.watch.running):
             raise RuntimeError('the simulator did not start (see %s)' % self.sim_log)
         self.node = StudentNode(session, script)
@@ -89,9 +99,9 @@ class Run:
         if self.stopped:
             return
         self.stopped = True
-        self.node.stop()
         self.sim_ended = self.sim.ended()
-        self.sim.stop(15)
+        # The node and the simulator stop together (fake_tb3 saves its picture as it stops).
+        together(self.node.stop, functools.partial(self.sim.stop, 15))
         self.watch.close()
 
 
