@@ -23,7 +23,9 @@ queue holds at least MIN_QUEUE messages, more than the publisher's queue_size, s
 between two turns is not cut).
 
 A process that install()s this must flush regularly (every connection of the process is batched,
-/rosout's too); between two flushes, messages wait.
+/rosout's too); between two flushes, messages wait. batch() batches one publisher only, for a
+thread that publishes at most one message per turn on it and leaves the node's other topics to
+rospy.
 """
 import io
 import socket
@@ -42,9 +44,9 @@ class BatchedConnection:
     """rospy.impl.tcpros_pubsub.QueuedConnection's interface over a connection (a rospy TCPROS
     transport), with its writes batched by flush()."""
 
-    def __init__(self, connection, queue_size, clock=time.monotonic):
+    def __init__(self, connection, queue_size, clock=time.monotonic, min_queue=MIN_QUEUE):
         self._connection = connection
-        self._queue_size = max(queue_size, MIN_QUEUE) if queue_size > 0 else 0
+        self._queue_size = max(queue_size, min_queue) if queue_size > 0 else 0
         self._lock = threading.Lock()
         self._queue = []  # whole messages, none of their bytes sent yet
         self._unsent = b''  # the rest of the batch the socket took only part of
@@ -106,6 +108,17 @@ def install(topics_module):
     """Make rospy (its module rospy.topics) wrap publisher connections in BatchedConnection; only
     connections made after this call are batched."""
     topics_module.QueuedConnection = BatchedConnection
+
+
+def batch(publisher):
+    """Batch the connections of this publisher only (those made after this call), each keeping its
+    queue_size (a publisher of at most one message per turn needs no more); the process's other
+    topics keep rospy's writer threads. Publish with publish() and flush from the same thread."""
+    topic = publisher.impl
+    queue_size, topic.queue_size = topic.queue_size or 0, None  # None: rospy wraps nothing itself
+    add_connection = topic.add_connection
+    topic.add_connection = lambda connection: add_connection(
+        BatchedConnection(connection, queue_size, min_queue=1))
 
 
 def publish(publisher, message):

@@ -136,3 +136,38 @@ def test_publish_numbers_each_message_and_drops_failed_connections(pair):
     assert read_all(subscriber_side) == (struct.pack('<II', 8, 1) + b'body'
                                          + struct.pack('<II', 8, 2) + b'body')
     assert topic.connections == [good] and topic.message_data_sent == 24
+
+
+class PublisherImpl:
+    """What batch() uses of rospy's _PublisherImpl: add_connection() wraps a transport in a
+    writer-thread connection when queue_size is set."""
+
+    def __init__(self, queue_size):
+        self.queue_size = queue_size
+        self.connections = []
+
+    def add_connection(self, connection):
+        if self.queue_size is not None:
+            connection = ('rospy writer thread', connection)
+        self.connections.append(connection)
+
+
+def test_batch_batches_that_publisher_only_with_its_queue_size(pair):
+    publisher_side, subscriber_side = pair
+    publisher_side.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, 4096)
+    batched, other = PublisherImpl(queue_size=5), PublisherImpl(queue_size=5)
+    batched_writes.batch(types.SimpleNamespace(impl=batched))
+    batched.add_connection(Transport(publisher_side))
+    other.add_connection('transport')
+    connection = batched.connections[0]
+    assert isinstance(connection, BatchedConnection)
+    assert other.connections == [('rospy writer thread', 'transport')]
+    total = 200
+    for index in range(total):
+        connection.write_data(message(index, size=1000))
+    assert connection.backlog == 5  # its own queue_size, not MIN_QUEUE: a late viewer sees a seq gap
+    received = b''
+    while connection.flush() or connection.backlog:
+        received += read_all(subscriber_side)
+    received += read_all(subscriber_side)
+    assert indices(received) == list(range(total - 5, total))
