@@ -85,30 +85,26 @@ def test_move_turtlebot3_pasted_then_the_pages_edits_get_full_marks(student):
         path = student.write(scripts + script, text)
         os.chmod(path, 0o755)
 
-    def rosrun(script):
-        return student.run('DISPLAY= rosrun move_turtlebot3 %s' % script, timeout=60)[1]
-
-    # As pasted: `#!` is not in column 1, so bash runs the file; `import` is ImageMagick's.
-    paste('laser_data.py')
-    output = rosrun('laser_data.py')
-    quoted(student, output, r'unable to open X server', lab)
-    quoted(student, output, r'line 3: from: command not found', lab)
-    # `#!` in column 1: Python, which stops at the string cut at the end of line 6.
-    paste('laser_data.py', column_one)
-    output = rosrun('laser_data.py')
-    quoted(student, output, r'laser_data\.py", line 6$', lab)
-    quoted(student, output, r'^SyntaxError: unterminated string literal', lab)
-    paste('laser_data.py', column_one, one_line_string)
-    output = rosrun('laser_data.py')
-    quoted(student, output, r'from sensor msgs', lab)
-    paste('laser_data.py', column_one, one_line_string, underscores)
-    output = rosrun('laser_data.py')   # the page's section on Python 2 prints
-    quoted(student, output, r'laser_data\.py", line 9$', lab)
-    quoted(student, output, r"^SyntaxError: Missing parentheses in call to 'print'", lab)
-    paste('trajectory.py', underscores)
-    output = rosrun('trajectory.py')
-    quoted(student, output, r'trajectory\.py", line 14$', lab)
-    quoted(student, output, r'^IndentationError: unindent does not match', lab)
+    # Each step of the page's section on copying: (script, the edits made so far, what the run prints
+    # that the page quotes).
+    steps = [
+        # As pasted: `#!` is not in column 1, so bash runs the file; `import` is ImageMagick's.
+        ('laser_data.py', (), [r'unable to open X server', r'line 3: from: command not found']),
+        # `#!` in column 1: Python, which stops at the string cut at the end of line 6.
+        ('laser_data.py', (column_one,),
+         [r'laser_data\.py", line 6$', r'^SyntaxError: unterminated string literal']),
+        ('laser_data.py', (column_one, one_line_string), [r'from sensor msgs']),
+        # The page's section on Python 2 prints.
+        ('laser_data.py', (column_one, one_line_string, underscores),
+         [r'laser_data\.py", line 9$', r"^SyntaxError: Missing parentheses in call to 'print'"]),
+        ('trajectory.py', (underscores,),
+         [r'trajectory\.py", line 14$', r'^IndentationError: unindent does not match']),
+    ]
+    for script, edits, patterns in steps:
+        paste(script, *edits)
+        output = student.run('DISPLAY= rosrun move_turtlebot3 %s' % script, timeout=60)[1]
+        for pattern in patterns:
+            quoted(student, output, pattern, lab)
 
     # All edits but `msq`: the callback fails at every scan, against the simulator.
     paste('laser_data.py', column_one, one_line_string, underscores, four_spaces, print_function)

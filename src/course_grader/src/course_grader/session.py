@@ -8,11 +8,11 @@ student's processes, and the student's side runs as the user `student`: it canno
 folder, nor signal or trace this process, the master or the simulators. The result leaves as a tar
 stream on this process's standard output, which no process of the student's holds."""
 import argparse
+import functools
 import os
 import pwd
 import subprocess
 import sys
-import functools
 import tarfile
 import time
 import uuid
@@ -165,7 +165,7 @@ class Master:
         try:
             master.getPid()
             return True
-        except Exception:   # noqa: B902 (not yet)
+        except Exception:   # not up yet
             return False
 
     def stop(self):
