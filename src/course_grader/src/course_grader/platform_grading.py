@@ -19,7 +19,7 @@ import uuid
 
 from course_grader import classroom, feedback, gradescope, results, rubric as rubrics
 from course_grader.check import print_result
-from course_grader.grader import Grader, _limit_resources
+from course_grader.grader import SESSION, Grader, _limit_resources
 from course_grader.submission import (MAX_UNPACKED_BYTES, SubmissionError, check_folder, find_package, unpack,
                                       upload_inside)
 from course_testing.process_table import stop_user
@@ -79,11 +79,11 @@ def grade_folder(rubric, folder, student, work, student_user='student'):
         shutil.rmtree(submission, ignore_errors=True)
         return results.failed(rubric, student, str(error), seconds=time.monotonic() - started)
     out = tempfile.mkdtemp(prefix='course-grader-', dir=work)
-    # A new name: grade_submission makes it, open to the student's side (sticky).
+    # A new name: the session makes it, open to the student's side (sticky).
     scratch = os.path.join(tempfile.gettempdir(), 'course-student-%s' % uuid.uuid4().hex[:8])
-    argv = ['rosrun', 'course_grader', 'grade_submission', '--student-user', student_user, '--lab', rubric.lab,
-            '--package', os.path.join(submission, package), '--out', out, '--scratch', scratch,
-            '--student', student]
+    # The session by its module, as ./grade.sh starts it (rosrun's look-up costs half a second).
+    argv = SESSION + ['--student-user', student_user, '--lab', rubric.lab, '--package',
+                      os.path.join(submission, package), '--out', out, '--scratch', scratch, '--student', student]
     env = dict(os.environ, HOME=out, ROS_HOME=os.path.join(out, 'ros'))
     log = os.path.join(out, 'grader.txt')
     limit = wall_limit(rubric)
