@@ -48,6 +48,15 @@ def stopped_for(poses, seconds):
     return recent[0][0] <= poses[-1][0] - seconds + STILL_SLACK_S and largest_move(recent) < STILL_M
 
 
+def still_since(poses):
+    """The first of the latest poses the robot has stood still at: where it stopped."""
+    last = len(poses) - 1
+    first = last
+    while first > 0 and largest_move([poses[last], poses[first - 1]]) < STILL_M:
+        first -= 1
+    return poses[first]
+
+
 def front_median(scans, seconds):
     """The front beam's median over the scans of the last `seconds` (three at least): one noisy
     reading does not decide."""

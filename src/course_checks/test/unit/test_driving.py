@@ -51,6 +51,14 @@ def test_stopped_for_a_while_of_simulated_time():
     assert not driving.stopped_for(driving_then_standing[:22], 1.0)   # not yet standing that long
 
 
+def test_the_stop_is_the_first_pose_of_the_latest_standing_still():
+    # Drove to 1 m, stood, crept 0.1 m at 3 s, stood again: the stop is where it stood last.
+    poses = [(t / 10, min(t, 20) * 0.05 + (0.1 if t >= 30 else 0.0), 0.0, 0.0) for t in range(50)]
+    assert driving.still_since(poses) == (3.0, 1.1, 0.0, 0.0)
+    assert driving.still_since(poses[:30]) == (2.0, 1.0, 0.0, 0.0)
+    assert driving.still_since(poses[:1]) == poses[0]
+
+
 def scans(*fronts):
     return [LaserScan(ranges=[front] + [3.5] * 359) for front in fronts]
 

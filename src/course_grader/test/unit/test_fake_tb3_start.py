@@ -1,5 +1,6 @@
-"""The grader starts fake_tb3 as its executable, not through world.launch: the parameters it sets
-beside a run's own must be those world.launch would set, or the run sees another simulator."""
+"""The grader starts fake_tb3 itself (its executable's main, prepared ahead of the run), not through
+world.launch: the parameters it sets beside a run's own must be those world.launch would set, or
+the run sees another simulator."""
 import os
 import re
 import xml.etree.ElementTree as ElementTree

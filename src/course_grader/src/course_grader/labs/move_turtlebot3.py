@@ -1,9 +1,10 @@
 """The TurtleBot3 lab (seed 001): trajectory.py, laser_data.py, avoid_obstacle.py on fake_tb3, with
 the checks of course_checks that move_turtlebot3's own tests use."""
+import errno
 import functools
 import math
+import os
 
-import roslib.packages
 import rospy
 
 from course_checks import driving, laser, service_calls
@@ -13,6 +14,7 @@ from course_checks.waiting import Deadline
 from course_grader import feedback
 from course_grader.labs.common import StudentNode, faked, run_each
 from course_testing.processes import together
+from course_testing.waiting import poll_until
 
 SIMULATION = ('script', 'world', 'x_pos', 'y_pos', 'noise_stddev', 'noise_seed', 'real_time_factor')
 CRITERIA = {
@@ -22,11 +24,82 @@ CRITERIA = {
                         'angular', 'speed_tolerance', 'rate_hz', 'rate_tolerance'),
     'trajectory_circle': ('radius_tolerance', 'periods', 'min_travel'),
     'laser_data': SIMULATION + ('beams', 'blocks'),
-    'avoid_stops': SIMULATION + ('min_drive', 'stopped_seconds', 'front_min', 'front_max'),
+    'avoid_stops': SIMULATION + ('far_real_time_factor', 'far_range', 'min_drive', 'stopped_seconds', 'front_min',
+                                 'front_max'),
     'avoid_stays': ('stay_seconds', 'max_creep'),
 }
 # What fake_tb3's world.launch gives the node beside a run's own settings.
 LAUNCH_DEFAULTS = {'cmd_vel_timeout': 0, 'clamp_speed': False, 'picture_png': '', 'robots': []}
+# fake_tb3 as far as it goes without its parameters: its modules imported (half of its start), then
+# it waits until the FIFO named by its first argument is opened for writing, which only the trusted
+# side can do (the FIFO lies in its own folder), once the run's parameters are set.
+PREPARED_FAKE_TB3 = 'import sys\nfrom fake_tb3.node import main\nopen(sys.argv[1]).close()\nmain()\n'
+
+
+class PreparedSimulator:
+    """fake_tb3 of one run, started ahead of it (as the run before stops)."""
+
+    def __init__(self, session, log_name):
+        self.log_name = log_name
+        self.fifo = session.log_path('.%s.go' % log_name)
+        os.mkfifo(self.fifo, 0o600)
+        # Started as fake_tb3_node would be, with the parameters world.launch would set (roslaunch's
+        # own start and stop cost about a second each per run).
+        try:
+            self.launch = session.trusted(['/usr/bin/python3', '-c', PREPARED_FAKE_TB3, self.fifo,
+                                           '__name:=' + SIMULATOR.lstrip('/')], log_name)
+        except OSError:   # no process left in the sandbox (a fork bomb of the run before)
+            self.discard_fifo()
+            raise
+
+    def _let_go(self):
+        try:
+            os.close(os.open(self.fifo, os.O_WRONLY | os.O_NONBLOCK))
+            return True
+        except OSError as error:
+            if error.errno != errno.ENXIO:
+                raise
+            return False   # not waiting on the FIFO yet (still importing)
+
+    def start(self, seconds):
+        """Let it run (its parameters are set); the Launch. False from ended() when it could not."""
+        poll_until(lambda: self.launch.ended() or self._let_go(), seconds)
+        self.discard_fifo()
+        return self.launch
+
+    def discard_fifo(self):
+        if os.path.exists(self.fifo):
+            os.remove(self.fifo)
+
+
+class Simulators:
+    """The fake_tb3 of each run ahead, each started while the run before stops."""
+
+    def __init__(self, session, scripts):
+        self.session = session
+        self.logs = ['sim_%s.txt' % script.split('.')[0] for script in scripts]
+        self.ready = None
+
+    def prepare_next(self):
+        if self.ready is None and self.logs:
+            self.ready = PreparedSimulator(self.session, self.logs[0])
+            self.logs.pop(0)
+
+    def take(self):
+        if self.ready and self.ready.launch.ended():   # prepared beside a fork bomb, say: again
+            self.ready.discard_fifo()
+            self.logs.insert(0, self.ready.log_name)
+            self.ready = None
+        self.prepare_next()
+        taken, self.ready = self.ready, None
+        return taken
+
+    def stop(self):
+        """The one prepared for a run that did not come (one that broke down before)."""
+        if self.ready:
+            self.ready.launch.stop(15)
+            self.ready.discard_fifo()
+            self.ready = None
 
 
 def static_checks(session):
@@ -50,27 +123,27 @@ def static_checks(session):
 class Run:
     """The simulator and one of the student's nodes on it, watched, stopped at the end."""
 
-    def __init__(self, session, script, picture=None, **sim_args):
+    def __init__(self, session, simulators, script, picture=None, **sim_args):
         self.session = session
+        self.simulators = simulators
         self.stopped = False
         self.sim_ended = False
-        self.sim_log = 'sim_%s.txt' % script.split('.')[0]
+        prepared = simulators.take()
+        self.sim_log = prepared.log_name
         self.deadline = Deadline(session.rubric.limits['run_seconds'])
         self.watch = RobotWatch()
         if picture:
             sim_args['picture_png'] = session.picture(picture)
         # fake_tb3 is the course's: it runs on the trusted side, with the course's environment, and
-        # with no parameter a node of the submission set in an earlier run (a rate, say). Started as
-        # its executable with the parameters world.launch would set (roslaunch's own start and stop
-        # cost about a second each per run).
+        # with no parameter a node of the submission set in an earlier run (a rate, say).
         if rospy.has_param(SIMULATOR):
             rospy.delete_param(SIMULATOR)
         rospy.set_param('/use_sim_time', True)
         for name, value in sorted(dict(LAUNCH_DEFAULTS, **sim_args).items()):
             rospy.set_param('%s/%s' % (SIMULATOR, name), value)
-        executable = roslib.packages.find_node('fake_tb3', 'fake_tb3_node')[0]
-        self.sim = session.trusted([executable, '__name:=' + SIMULATOR.lstrip('/')], self.sim_log)
-        if not self.deadline.wait(self.watch.running):
+        self.sim = prepared.start(self.deadline.left())
+        if not self.deadline.wait(self.watch.running, gave_up=self.sim.ended):
+            self.sim.stop(15)
             raise RuntimeError('the simulator did not start (see %s)' % self.sim_log)
         self.node = StudentNode(session, script)
 
@@ -100,16 +173,20 @@ class Run:
             return
         self.stopped = True
         self.sim_ended = self.sim.ended()
+        try:
+            self.simulators.prepare_next()
+        except OSError:
+            pass   # the sandbox has no process left now: the next run prepares its own when it starts
         # The node and the simulator stop together (fake_tb3 saves its picture as it stops).
         together(self.node.stop, functools.partial(self.sim.stop, 15))
         self.watch.close()
 
 
-def check_trajectory(session):
+def check_trajectory(session, simulators):
     rate_c = session.rubric.criterion('trajectory_rate')
     circle_c = session.rubric.criterion('trajectory_circle')
     linear, angular = rate_c['linear'], rate_c['angular']
-    run = Run(session, rate_c['script'], picture='trajectory.png', world=rate_c['world'], x_pos=rate_c['x_pos'],
+    run = Run(session, simulators, rate_c['script'], picture='trajectory.png', world=rate_c['world'], x_pos=rate_c['x_pos'],
               y_pos=rate_c['y_pos'], noise_stddev=rate_c['noise_stddev'], real_time_factor=rate_c['real_time_factor'])
     try:
         watch = run.watch
@@ -147,11 +224,11 @@ def check_trajectory(session):
         run.stop()
 
 
-def check_laser_data(session):
+def check_laser_data(session, simulators):
     criterion = session.rubric.criterion('laser_data')
     beams = criterion['beams']
     needed = criterion['blocks']
-    run = Run(session, criterion['script'], world=criterion['world'], x_pos=criterion['x_pos'],
+    run = Run(session, simulators, criterion['script'], world=criterion['world'], x_pos=criterion['x_pos'],
               y_pos=criterion['y_pos'], noise_stddev=criterion['noise_stddev'],
               noise_seed=criterion['noise_seed'], real_time_factor=criterion['real_time_factor'])
     try:
@@ -175,13 +252,14 @@ def check_laser_data(session):
         run.stop()
 
 
-def check_avoid_obstacle(session):
+def check_avoid_obstacle(session, simulators):
     stops_c = session.rubric.criterion('avoid_stops')
     stays_c = session.rubric.criterion('avoid_stays')
-    run = Run(session, stops_c['script'], picture='avoid_obstacle.png',
+    run = Run(session, simulators, stops_c['script'], picture='avoid_obstacle.png',
               world=stops_c['world'], x_pos=stops_c['x_pos'],
               y_pos=stops_c['y_pos'], noise_stddev=stops_c['noise_stddev'],
-              noise_seed=stops_c['noise_seed'], real_time_factor=stops_c['real_time_factor'])
+              noise_seed=stops_c['noise_seed'], real_time_factor=stops_c['real_time_factor'],
+              far_real_time_factor=stops_c['far_real_time_factor'], far_range=stops_c['far_range'])
     try:
         watch = run.watch
         low, high = stops_c['front_min'], stops_c['front_max']
@@ -201,7 +279,8 @@ def check_avoid_obstacle(session):
             return run.judged({'avoid_stops': failure,
                     'avoid_stays': Verdict(False, 'not checked: the robot did not drive')})
         stopped = run.deadline.wait(lambda: driving.stopped_for(watch.copy('poses'), stops_c['stopped_seconds']))
-        first_stop = watch.copy('poses')[-1]
+        # The stay is watched from the stop itself: the standing still that told it counts too.
+        first_stop = driving.still_since(watch.copy('poses'))
         if not stopped:
             run.stop()
             hints = run.node.explain()
@@ -232,4 +311,10 @@ CHECKS = [(check_trajectory, 'trajectory.py', ['trajectory_rate', 'trajectory_ci
 
 
 def run_checks(session):
-    return run_each(session, CHECKS)
+    simulators = Simulators(session, [script for _, script, criterion_ids in CHECKS
+                                      if not session.only or session.only in criterion_ids])
+    try:
+        return run_each(session, [(functools.partial(check, simulators=simulators), script, criterion_ids)
+                                  for check, script, criterion_ids in CHECKS])
+    finally:
+        simulators.stop()
