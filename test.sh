@@ -2,7 +2,7 @@
 # Runs every test of the workspace: ./test.sh        (or only some packages: ./test.sh turtlesim my_turtle)
 # Installs what is missing, builds, then runs the steps: the pure tests (a pytest per folder), the
 # workspace's pytests and the rostests, two (or three, on a quiet machine) at a time, the ones that
-# measure rates first and alone, and ends with one line
+# measure rates first, one at a time with one other held to one core beside them, and ends with one line
 # `N passed, N failed` (docs/testing.md).
 # Exit status 0 only if every step found its tests, ran them, and they all passed.
 # Environment: TEST_JOBS  how many slow steps run side by side (default auto: 2, and a third while a
@@ -59,7 +59,8 @@ jobs_file="$LOGS/jobs.txt"
 : > "$jobs_file"
 # Steps that measure wall-clock rates, speeds and latencies (a 30 Hz topic's longest gap, how fast
 # a node notices a dead master, turtlesim's 62.5 Hz, a turtle's 0.5 m/s, a 10x real-time factor):
-# they run first, each with nothing beside it.
+# they run first, one at a time, each with at most one other step beside it, held to one core (as
+# every test must hold with another process keeping a core busy).
 ALONE=("pytest tests/network/test_faults.py" "pytest tests/network/test_simulator_abuse.py"
        "pytest tests/network/test_two_hosts.py" "rostest fake_tb3/test/real_time.test"
        "rostest turtlesim/test/interface.test" "rostest ros_exercises/test/publisher_subscriber.test"

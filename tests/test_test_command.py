@@ -179,29 +179,45 @@ def test_a_package_in_a_catkin_ignored_folder_is_not_a_package(workspace):
     assert (code, last_line(output)) == (0, '5 passed, 0 failed'), output
 
 
-def test_a_job_that_needs_the_machine_alone_runs_with_nothing_beside_it(tmp_path):
-    """run_test_jobs.py: `alone` jobs never overlap another job; the others run two at a time."""
+def test_a_job_that_needs_the_machine_alone_has_a_core_to_itself(tmp_path):
+    """run_test_jobs.py: `alone` jobs never overlap each other; beside one runs at most one other
+    job, held to one core (none with a single core); the others run two at a time."""
     spans = tmp_path / 'spans.txt'
-    job = 'echo "%s start $(date +%%s.%%N)" >> {0}; sleep 0.3; echo "%s end $(date +%%s.%%N)" >> {0}'.format(spans)
-    lines = ['%s\t0\t%s\t%s\n' % (name, sharing, job % (name, name))
-             for name, sharing in [('a', 'shared'), ('b', 'shared'), ('rates', 'alone'), ('c', 'shared')]]
+    cores = 'sed -n "s/^Cpus_allowed_list:\\s*//p" /proc/self/status'
+    job = ('echo "%s start $(date +%%s.%%N) $({1})" >> {0}; %s; echo "%s end $(date +%%s.%%N) $({1})" >> {0}'
+           ).format(spans, cores)
+    # `a` starts beside `rates` and outlasts both alone jobs.
+    outlast = 'until grep -q "more_rates end" {0}; do sleep 0.1; done; sleep 1'.format(spans)
+    lines = ['%s\t0\t%s\t%s\n' % (name, sharing, job % (name, wait, name))
+             for name, sharing, wait in [('a', 'shared', outlast), ('b', 'shared', 'sleep 0.3'),
+                                         ('rates', 'alone', 'sleep 0.3'), ('more_rates', 'alone', 'sleep 0.3'),
+                                         ('c', 'shared', 'sleep 0.3'), ('d', 'shared', 'sleep 0.3')]]
     result = subprocess.run(
         ['/usr/bin/python3', os.path.join(ROOT, 'tools', 'run_test_jobs.py'), '--jobs', '2',
          '--logs', str(tmp_path / 'logs'), '--times', str(tmp_path / 'times.txt'),
          '--failed-steps', str(tmp_path / 'failed.txt')],
         input=''.join(lines), stdout=subprocess.PIPE, universal_newlines=True, timeout=60)
-    assert result.returncode == 0 and result.stdout.count('\n') == 5, result.stdout
+    assert result.returncode == 0 and result.stdout.count('\n') == 7, result.stdout
     assert result.stdout.endswith('test: at most 2 steps ran side by side\n'), result.stdout
-    events = {}
+    events, allowed = {}, {}
     for line in spans.read_text().splitlines():
-        name, what, at = line.split()
+        name, what, at, held_to = line.split()
         events[name, what] = float(at)
-    alone = (events['rates', 'start'], events['rates', 'end'])
-    for name in 'abc':
-        assert events[name, 'end'] <= alone[0] or events[name, 'start'] >= alone[1], events
-    overlapping = [events[x, 'start'] < events[y, 'end'] and events[y, 'start'] < events[x, 'end']
-                   for x, y in [('a', 'b'), ('a', 'c'), ('b', 'c')]]
-    assert any(overlapping), events  # the shared ones do run side by side
+        allowed[name, what] = held_to
+    names = [name for name in 'abcd']
+
+    def overlap(x, y):
+        return events[x, 'start'] < events[y, 'end'] and events[y, 'start'] < events[x, 'end']
+    assert not overlap('rates', 'more_rates'), events
+    usable = sorted(os.sched_getaffinity(0))
+    beside = [name for name in names if overlap(name, 'rates') or overlap(name, 'more_rates')]
+    if len(usable) > 1:
+        assert beside == ['a'], events  # the alone jobs' idle core is used, by one job at a time
+        assert allowed['a', 'start'] == str(usable[-1]), allowed
+        assert allowed['a', 'end'] == allowed['b', 'start'], allowed  # every core, once the alone jobs ended
+    else:
+        assert beside == [], events
+    assert any(overlap(x, y) for x in names for y in names if x < y), events  # two at a time after them
     assert (tmp_path / 'failed.txt').read_text() == ''
 
 

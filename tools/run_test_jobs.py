@@ -5,14 +5,18 @@ Usage: run_test_jobs.py --jobs N|auto --logs DIR --times FILE [--first-times FIL
 JOBS has one job per line: `label<TAB>exit codes that mean "ran, results written"<TAB>alone|shared
 <TAB>shell command`, e.g. `rostest fake_tb3/test/rviz.test<TAB>0,1,2<TAB>shared<TAB>rostest ...`.
 Each rostest starts its own master on a free port, so independent .test files may run side by side.
-`alone` jobs run first, one at a time with nothing beside them: tests that measure wall-clock rates
-and latencies (a 30 Hz topic's longest gap), which a second test on a 2-core machine would disturb.
+`alone` jobs run first, one at a time: tests that measure wall-clock rates and latencies (a 30 Hz
+topic's longest gap), which a second test free to use both cores of a 2-core machine would disturb.
+Beside them runs at most one of the others, held to one core (the last one) until the last alone job
+has ended: an alone job then has at least one core to itself, which is what every test must hold
+with (another process keeping a core busy), and its minutes of waiting for real time are not lost
+to the others (with --jobs 1, or on a single core, nothing runs beside them).
 The others run N at a time; `--jobs auto` runs two, and a third while a whole core has been idle
 for the last few seconds (most steps wait for robots moving in real time, so on a quiet machine a
 third fits; on a shared or loaded one it does not start).
 
-Prints one line per job as it ends (label, seconds, exit status), and under a job that failed the
-lines of its log that say why. Each job's whole output goes to DIR/<label>.log. The durations are
+Prints one line per job as it ends (label, seconds, CPU seconds of all it ran, exit status), and
+under a job that failed the lines of its log that say why. Each job's whole output goes to DIR/<label>.log. The durations are
 kept in FILE, so that the next run starts the longest jobs first (on a first run, those of
 --first-times, measured once on a 2-core machine; jobs unknown to both come first). A job that ends
 with any other exit status is written to --failed-steps, one per line: its results are not to be
@@ -103,6 +107,44 @@ class SideBySide:
         return idle_cores(before[1], self.since[1], self.cores) >= 1.0
 
 
+def next_job(waiting, running, side_by_side, beside_core):
+    """(index in `waiting` of the job to start now, the core it is held to or None), or (None, None)
+    when none may start yet. `running`: the running jobs' entries, whose [3] says alone and [-1] the
+    core a job is held to. Alone jobs come first in `waiting`; each starts when no other alone job runs
+    and nothing runs but one job held to beside_core; beside an alone job (running or next), one
+    other job may run, held to beside_core."""
+    running = list(running)
+    alone_phase = waiting[0][2] or any(entry[3] for entry in running)
+    if not alone_phase:
+        return (0, None) if side_by_side.room(len(running)) else (None, None)
+    if waiting[0][2] and not any(entry[3] for entry in running):
+        if all(entry[-1] is not None for entry in running):
+            return 0, None  # nothing beside it but one job held to the other core
+        return None, None  # the others (not held to a core) end first
+    shared = next((index for index, job in enumerate(waiting) if not job[2]), None)
+    if beside_core is None or shared is None or any(not entry[3] for entry in running):
+        return None, None
+    return shared, beside_core
+
+
+def start_job(core):
+    """In the job's process before it runs its command: Ctrl-C as in a terminal, and held to `core`."""
+    restore_ctrl_c()
+    if core is not None:
+        os.sched_setaffinity(0, {core})
+
+
+def release(mark, cores):
+    """Lets every thread of every process of a job (found by its mark) run on `cores` again."""
+    for _ in range(2):  # a child forked during the first pass by a process not yet released
+        for pid in marked_processes(mark):
+            try:
+                for thread in os.listdir('/proc/%d/task' % pid):
+                    os.sched_setaffinity(int(thread), cores)
+            except OSError:
+                pass  # gone meanwhile
+
+
 def left_running(mark, grace=5.0):
     """What still runs with `mark` in its environment once `grace` seconds have passed (a node may
     still be saving its picture as its roslaunch ends), as command lines; then stops it."""
@@ -132,41 +174,50 @@ def main():
     jobs.sort(key=lambda job: (not job[2], -known.get(job[0], float('inf'))))
     os.makedirs(options.logs, exist_ok=True)
     side_by_side = SideBySide(options.jobs, os.cpu_count() or 1)
+    usable = sorted(os.sched_getaffinity(0))
+    beside_core = usable[-1] if len(usable) > 1 and options.jobs != 1 else None
     widest = 0
     waiting, running, failed_steps, times = list(jobs), {}, [], dict(known)
     while waiting or running:
         while waiting:
-            if running and (waiting[0][2] or any(entry[3] for entry in running.values())):
-                break  # an `alone` job waits for the others to end, and keeps the machine to itself
-            if not side_by_side.room(len(running)):
+            index, core = next_job(waiting, running.values(), side_by_side, beside_core)
+            if index is None:
                 break
-            label, codes, alone, command = waiting.pop(0)
+            label, codes, alone, command = waiting.pop(index)
             log = open(log_name(options.logs, label), 'w')
             mark = new_mark('COURSE_TEST_STEP')
             # SIGINT and SIGQUIT as in a terminal: when test.sh runs in the background (`./test.sh &`,
             # a CI runner), every program inherits both ignored, and the tests' roscore and roslaunch
             # would ignore the SIGINT that stops them (tests/network/ took 181 s instead of 90).
             process = subprocess.Popen(['bash', '-c', command], stdout=log, stderr=subprocess.STDOUT,
-                                       stdin=subprocess.DEVNULL, env=with_mark(mark), preexec_fn=restore_ctrl_c)
-            running[process.pid] = (process, label, codes, alone, log, time.monotonic(), mark)
+                                       stdin=subprocess.DEVNULL, env=with_mark(mark),
+                                       preexec_fn=lambda core=core: start_job(core))
+            running[process.pid] = (process, label, codes, alone, log, time.monotonic(), mark, core)
             side_by_side.started()
             widest = max(widest, len(running))
         # With jobs waiting for an idle core, look again every half second.
-        pid, status = os.waitpid(-1, os.WNOHANG if side_by_side.auto and waiting else 0)
+        pid, status, usage = os.wait4(-1, os.WNOHANG if side_by_side.auto and waiting else 0)
         if pid == 0:
             time.sleep(0.5)
             continue
         if pid not in running:
             continue
-        process, label, codes, _, log, start, mark = running.pop(pid)
+        process, label, codes, _, log, start, mark, _ = running.pop(pid)
+        if not (waiting and waiting[0][2]) and not any(entry[3] for entry in running.values()):
+            # The alone jobs are over: the job held to one core beside them gets every core again.
+            for key, entry in running.items():
+                if entry[-1] is not None:
+                    release(entry[6], usable)
+                    running[key] = entry[:-1] + (None,)
         log.close()
         code = os.waitstatus_to_exitcode(status) if hasattr(os, 'waitstatus_to_exitcode') else status >> 8
         process.returncode = code
         seconds = time.monotonic() - start
         left = left_running(mark)
         times[label] = seconds
-        print('test: %s  (%.0f s%s)' % (label, seconds, '' if code == 0 else ', exit %d' % code),
-              flush=True)
+        # The CPU time of the step and of every process it waited for (roslaunch's nodes included).
+        print('test: %s  (%.0f s, %.0f s CPU%s)' % (label, seconds, usage.ru_utime + usage.ru_stime,
+                                                   '' if code == 0 else ', exit %d' % code), flush=True)
         if code != 0:
             with open(log_name(options.logs, label), errors='replace') as output:
                 for line in output:

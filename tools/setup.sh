@@ -48,9 +48,13 @@ debian_suite() {
 }
 
 # The package list for SUITE: plain lines for every suite, `SUITE: package` lines for that suite only.
+# PART: all (default), build (the lines above the first `# ----` line: what catkin_make needs) or
+# later (the lines below it).
 suite_packages() {
-    local suite=$1 line
+    local suite=$1 part=${2:-all} line section=build
     while IFS= read -r line || [ -n "$line" ]; do
+        case "$line" in "# ----"*) section=later ;; esac
+        [ "$part" = all ] || [ "$part" = "$section" ] || continue
         line="${line%%#*}"
         line="$(echo "$line" | xargs)"
         [ -z "$line" ] && continue
@@ -92,23 +96,40 @@ refuse_unavailable() {
     exit $REFUSED
 }
 
+SUITE=""
+SUDO=()
+LATER_PACKAGES=""   # missing packages that catkin_make does not need, left for install_later
+# Checks that apt has every missing package, then installs the ones catkin_make needs.
 install_missing() {
-    local suite missing unavailable
-    suite=$(debian_suite) || exit $REFUSED
-    missing=$(missing_packages $(suite_packages "$suite"))
+    local missing unavailable
+    SUITE=$(debian_suite) || exit $REFUSED
+    missing=$(missing_packages $(suite_packages "$SUITE"))
     [ -z "$missing" ] && return 0
-    local sudo=()
     if [ "$(id -u)" != 0 ]; then
         command -v sudo >/dev/null || { echo "setup: these packages are missing and I am not root (no sudo either):" $missing >&2; exit 1; }
-        sudo=(sudo)
+        SUDO=(sudo)
     fi
-    "${sudo[@]}" apt-get update -qq
+    "${SUDO[@]}" apt-get update -qq
     # Every package available before any is installed: never a half-installed machine.
     unavailable=$(unavailable_packages $missing)
-    [ -z "$unavailable" ] || refuse_unavailable "$suite" "$unavailable"
-    echo "setup: installing Debian $suite packages:" $missing
-    # sudo resets the environment, so the variable goes on its command line.
-    "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $missing
+    [ -z "$unavailable" ] || refuse_unavailable "$SUITE" "$unavailable"
+    LATER_PACKAGES=$(missing_packages $(suite_packages "$SUITE" later))
+    apt_install $(missing_packages $(suite_packages "$SUITE" build))
+}
+
+install_later() {
+    apt_install $LATER_PACKAGES
+}
+
+apt_install() {
+    [ $# -gt 0 ] || return 0
+    echo "setup: installing Debian $SUITE packages:" "$@"
+    # sudo resets the environment, so the variable goes on its command line. dpkg unpacks without
+    # syncing each file to disk (--force-unsafe-io): only packages that were missing are unpacked, so a
+    # machine that loses power mid-install loses none of what it had, and reinstalling those packages
+    # (apt-get install --reinstall) repairs it.
+    "${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
+        -o Dpkg::Options::=--force-unsafe-io "$@"
 }
 
 BASE="${CATKIN_BUILD_BASE:-$ROOT}"
@@ -137,11 +158,21 @@ case "${1:-}" in
         exit 0 ;;
 esac
 [ "${COURSE_SKIP_INSTALL:-0}" = 1 ] || install_missing
-[ "${1:-}" = --install-only ] && exit 0
+if [ "${1:-}" = --install-only ]; then
+    install_later
+    exit 0
+fi
 mkdir -p "$BASE"
 echo "setup: building the workspace (catkin_make) into $BASE"
-if ! workspace_make -j2 > "$BASE/catkin_make.log" 2>&1; then
+# The packages catkin_make does not need install meanwhile (apt in the foreground, where sudo can
+# ask for a password); a failed install waits for the build to end, so that nothing is left running.
+workspace_make -j2 > "$BASE/catkin_make.log" 2>&1 &
+make_pid=$!
+installed=yes
+install_later || installed=no
+if ! wait $make_pid; then
     tail -n 60 "$BASE/catkin_make.log" >&2
     echo "setup: catkin_make failed; the whole log is $BASE/catkin_make.log" >&2
     exit 1
 fi
+[ "$installed" = yes ] || { echo "setup: apt-get install failed (above)" >&2; exit 1; }
