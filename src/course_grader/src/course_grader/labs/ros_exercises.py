@@ -55,10 +55,11 @@ class Exercise(TurtlesimLaunch):
     the criterion's real-time factor), logged to <name>.log, stopped at the end; turtlesim's window
     is kept as `picture`."""
 
-    def __init__(self, session, criterion, log_name, *args, picture=None, on_wall_clock=False):
+    def __init__(self, session, criterion, log_name, *args, picture=None, on_wall_clock=False, lock_step=False):
         self.deadline = Deadline(session.rubric.limits['run_seconds'])
         super().__init__(session, criterion['launch_file'], list(args), log_name, picture=picture,
-                         real_time_factor=None if on_wall_clock else criterion['real_time_factor'])
+                         real_time_factor=None if on_wall_clock else criterion['real_time_factor'],
+                         lock_step=lock_step)
 
     def on_interface(self, recorder, name):
         """A failing verdict when the turtle's poses came from another node than the course's
@@ -232,8 +233,10 @@ def check_shape(session, shape):
     start = tuple(criterion['spawn'])
     outline = figures.polygon(*start, side, {'square': 4, 'triangle': 3}[shape])
     poses = turtle.turtle_poses('robotics')
+    # The closed loop ends each side and turn from the pose: turtlesim waits for its answer to each
+    # pose (lock step), so a machine that keeps the student's node waiting does not move the turtle on.
     exercise = Exercise(session, criterion, 'exercise5_%s.log' % shape, *_args(session, shape),
-                        picture='%s.png' % shape)
+                        picture='%s.png' % shape, lock_step=True)
     try:
         finished = exercise.wait(lambda: exercise.printed(r'(Finished) the %s' % shape))
         path = turtle.pose_array(poses)
