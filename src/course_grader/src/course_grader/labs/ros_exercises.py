@@ -59,6 +59,7 @@ class Exercise(TurtlesimLaunch):
 
     def __init__(self, session, criterion, log_name, *args, picture=None, lock_step=False):
         self.deadline = Deadline(session.rubric.limits['run_seconds'])
+        self.real_time_factor = criterion['real_time_factor']   # how far the turtle drives between poses heard
         super().__init__(session, criterion['launch_file'], list(args), log_name, picture=picture,
                          real_time_factor=criterion['real_time_factor'],
                          lock_step=lock_step)
@@ -72,7 +73,7 @@ class Exercise(TurtlesimLaunch):
             owner = ', '.join(sorted(self.simulators)) or 'turtlesim'
             return faked(['x'], {'%s/pose' % name: others}, owner)['x']
         unused_calls = [turtle.no_unused_calls(simulator) for simulator in sorted(self.simulators)]
-        return next(filter(None, unused_calls), None) or turtle.no_jumps(recorder, name)
+        return next(filter(None, unused_calls), None) or turtle.no_jumps(recorder, name, self.real_time_factor)
 
     def wait(self, condition, seconds=None):
         """condition() within `seconds` (the run's time left at most); False as soon as the launch ended."""
