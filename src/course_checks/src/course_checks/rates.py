@@ -20,6 +20,48 @@ def kept_rate(times):
     return 1.0 / median if median > 0 else 0.0
 
 
+class HeldClock:
+    """A simulated clock for measuring a publisher's rate whatever the machine's load: it steps on
+    `step_ns` at a time, but holds one expected period after the last message heard until the next
+    one comes (a publisher on simulated time cannot publish before its period is over, and one kept
+    from the processor finds the clock where it left it), or until its caller gives up waiting:
+    then the publisher is slower than that period and the clock no longer holds. The messages'
+    stamps are the clock's time when they came: never earlier than the publisher published them,
+    and later by less than a period, by less and less from one message to the next (the clock
+    holds one period after the last), so the rate from first to last over n messages is the
+    publisher's within one period in n - 1."""
+
+    def __init__(self, period_ns, step_ns):
+        self.period_ns = period_ns
+        self.step_ns = step_ns
+        self.now_ns = 0
+        self.hold_ns = None   # where the clock waits for the next message; None: it does not
+        self.gave_up = False
+
+    def holding(self):
+        return self.hold_ns is not None and self.now_ns >= self.hold_ns
+
+    def next_ns(self):
+        """The clock's next time (the hold's exactly, when it comes first), or None while it holds."""
+        if self.holding():
+            return None
+        self.now_ns += self.step_ns
+        if self.hold_ns is not None:
+            self.now_ns = min(self.now_ns, self.hold_ns)
+        return self.now_ns
+
+    def heard(self):
+        """A message came: its stamp (seconds); the clock holds one period on."""
+        if not self.gave_up:
+            self.hold_ns = self.now_ns + self.period_ns
+        return self.now_ns / 1e9
+
+    def give_up(self):
+        """No message came while the clock held (a slower publisher): it holds no more."""
+        self.gave_up = True
+        self.hold_ns = None
+
+
 def cycles_through(digits, id_number):
     """Whether the digits are the ID's, in order, starting anywhere and wrapping round."""
     expected = [int(digit) for digit in id_number]

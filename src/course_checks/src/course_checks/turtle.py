@@ -96,23 +96,24 @@ def turned(samples):
                for (_, a), (_, b) in zip(samples, samples[1:]))
 
 
-def jumps(samples):
+def jumps(samples, real_time_factor=1.0):
     """Moves between two heard poses that no velocity explains: (from (x, y), to (x, y)) of each.
     turtlesim moves a turtle at most |linear_velocity| * 16 ms a tick; between two poses heard
-    dt seconds apart it had about dt / 16 ms ticks (JITTER more, for a pose a busy machine
-    delayed). Farther than that (or at all, standing still at both ends): a teleport or /reset."""
+    dt wall seconds apart it had about dt / 16 ms ticks (JITTER more, for a pose a busy machine
+    delayed), real_time_factor times as many on a simulated clock that fast. Farther than that (or
+    at all, standing still at both ends): a teleport or /reset."""
     found = []
     for (t_a, a), (t_b, b) in zip(samples, samples[1:]):
         moved = math.hypot(b.x - a.x, b.y - a.y)
         speed = max(abs(a.linear_velocity), abs(b.linear_velocity))
-        if moved > speed * (t_b - t_a + JITTER) + 1e-3:
+        if moved > speed * real_time_factor * (t_b - t_a + JITTER) + 1e-3:
             found.append(((a.x, a.y), (b.x, b.y)))
     return found
 
 
-def no_jumps(recorder, turtle):
+def no_jumps(recorder, turtle, real_time_factor=1.0):
     """A failing verdict naming the first jump of the turtle, or None when it only drove."""
-    found = jumps(recorder.entries())
+    found = jumps(recorder.entries(), real_time_factor)
     if not found:
         return None
     (x0, y0), (x1, y1) = found[0]

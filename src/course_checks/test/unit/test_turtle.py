@@ -50,6 +50,13 @@ def test_a_teleport_is_a_jump_and_named():
     assert not verdict.passed and 'turtle1 jumped 1 times without driving there' in verdict.reason
 
 
+def test_on_a_faster_clock_a_turtle_drives_farther_between_two_poses_heard():
+    # 0.46 m at 1 m/s between two poses heard 0.2 wall s apart: a jump in real time, not at 5x.
+    samples = [(0.0, Pose(x=4.66, y=7.03, linear_velocity=1.0)), (0.2, Pose(x=4.54, y=6.58, linear_velocity=1.0))]
+    assert len(turtle.jumps(samples)) == 1
+    assert turtle.jumps(samples, real_time_factor=5) == []
+
+
 def test_a_standing_turtle_that_moves_jumped():
     samples = [(0.0, Pose(x=1.0, y=1.0)), (0.016, Pose(x=1.01, y=1.0))]
     assert turtle.jumps(samples) == [((1.0, 1.0), (1.01, 1.0))]

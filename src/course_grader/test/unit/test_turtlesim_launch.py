@@ -49,7 +49,7 @@ def test_what_reaches_the_trusted_turtlesim_is_checked():
     declared = {'name': '/lab/sim', 'remaps': [['turtle1/pose', 'robot/pose'], ['__log', '/grader/x'],
                                                 ['__master', 'http://elsewhere:1'], ['a', 'b:=c']],
                 'params': {'background_g': 5, 'canvas_png': '/grader/result.json', 'real_time_factor': 1000,
-                           '../../use_sim_time': False, '/abs': 1}}
+                           'lock_step': False, '../../use_sim_time': False, '/abs': 1}}
     assert _node(declared) == {'name': '/lab/sim', 'remaps': [('turtle1/pose', 'robot/pose')],
                                'params': {'background_g': 5}}
     assert _node({'name': '__master'}) is None

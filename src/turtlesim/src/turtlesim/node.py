@@ -230,6 +230,7 @@ class TurtlesimNode:
     def on_cmd_vel(self, twist, name):
         values = (twist.linear.x, twist.linear.y, twist.angular.z)
         self.requests.submit(lambda now: self.world.command_velocity(name, *values, now))
+        self.ticks.commanded()
 
     def set_pen(self, name, req):
         self.call(lambda now: self.world.set_pen(name, req.r, req.g, req.b, req.width, req.off))

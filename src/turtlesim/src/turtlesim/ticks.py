@@ -1,8 +1,10 @@
 """When turtlesim ticks: every 16 ms of wall time, as the original, or, with /use_sim_time, every
 16 ms of a simulated clock that turtlesim itself publishes on /clock and runs `~real_time_factor`
 times as fast as the wall clock (so that graders and checks can run the turtles faster than real
-time; nodes on simulated time, rospy's and roscpp's Rate included, follow it).
+time; nodes on simulated time, rospy's and roscpp's Rate included, follow it). With ~lock_step as
+well, each tick of that clock also waits for a node's answer (a grader's closed-loop runs).
 """
+import threading
 import time
 
 import rospy
@@ -35,22 +37,44 @@ class WallTicks:
         self.next_tick += TICK_SECONDS
         return now
 
+    def commanded(self):
+        """A velocity command came: the wall clock waits for nobody."""
+
 
 class SimulatedTicks:
     """A tick every TICK_SECONDS of simulated time, which starts at 0 and runs real_time_factor
     times as fast as the wall clock; /clock is published clock_rate times per simulated second,
     and this node's own rospy time is set to it (rospy would otherwise subscribe the node to its
-    own /clock)."""
+    own /clock).
+
+    With lock_step, the clock runs up to just before each tick and waits there for a velocity
+    command sent since the last tick (a closed loop's answer to the pose it was sent) or, failing
+    that, until a tick of wall time has passed since the last tick: a node that the machine keeps
+    from the processor sees the turtle move on at most as fast as in real time, however fast the
+    factor, and one that answers each pose sees the same simulated delays at any factor and load."""
 
     simulated = True
 
-    def __init__(self, real_time_factor, clock_rate):
+    def __init__(self, real_time_factor, clock_rate, lock_step=False):
         self.pacer = Pacer(real_time_factor, time.monotonic())
         self.clock = Periodic(clock_rate, 'clock_rate')
         self.clock_pub = rospy.Publisher('/clock', Clock, queue_size=100)
         self.next_tick_ns = 0
+        self.lock_step = lock_step
+        self.answered = threading.Event()   # a command came since the last tick
+        self.last_tick_wall = time.monotonic()
         stop_hearing_clock()
         self._set(0)
+
+    def commanded(self):
+        """A velocity command came (any turtle's): with lock_step, the next tick may come."""
+        self.answered.set()
+
+    def _await_answer(self, running):
+        give_up = self.last_tick_wall + TICK_SECONDS
+        now = time.monotonic()
+        while now < give_up and running() and not self.answered.wait(min(give_up - now, 0.05)):
+            now = time.monotonic()
 
     def _set(self, sim_ns):
         stamp = rospy.Time(0, sim_ns)
@@ -72,22 +96,29 @@ class SimulatedTicks:
             self._sleep_until(self.clock.next_ns, running)
             self._set(self.clock.next_ns)
             self.clock.advance()
+        if self.lock_step:
+            self._await_answer(running)
         self._sleep_until(tick_ns, running)
         if self.clock.next_ns == tick_ns:
             self.clock.advance()
+        self.answered.clear()   # what comes from here on answers this tick's pose
         self._set(tick_ns)
+        self.last_tick_wall = time.monotonic()
         self.next_tick_ns += TICK_NS
         return tick_ns / 1e9
 
 
 def make_ticks():
-    """The ticks the parameters ask for: /use_sim_time, ~real_time_factor, ~clock_rate."""
+    """The ticks the parameters ask for: /use_sim_time, ~real_time_factor, ~clock_rate, ~lock_step."""
     if not rospy.get_param('/use_sim_time', False):
         return WallTicks()
     factor = rospy.get_param('~real_time_factor', 1.0)
     rate = rospy.get_param('~clock_rate', 250.0)
+    lock_step = rospy.get_param('~lock_step', False)
+    if not isinstance(lock_step, bool):
+        raise ValueError('parameter lock_step must be true or false, got %r' % (lock_step,))
     try:
         factor = float(factor)
     except (TypeError, ValueError):
         raise ValueError('parameter real_time_factor must be a positive number, got %r' % (factor,))
-    return SimulatedTicks(factor, rate)
+    return SimulatedTicks(factor, rate, lock_step)

@@ -2,24 +2,26 @@
 turtlesim (started by the grader in place of the launch file's own, labs.turtlesim_runs), with the
 checks of course_checks that ros_exercises' own tests use."""
 import re
+import threading
 import time
 
 import rospy
 from geometry_msgs.msg import Twist
+from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Int32
 
 from course_checks import figures, rates, turtle
 from course_checks.robot import senders
 from course_checks.verdict import Verdict
 from course_checks.waiting import Deadline
+from course_common.timing import Pacer
 from course_grader.labs.common import faked, run_each
 from course_grader.labs.turtlesim_runs import SimulatedClock, TurtlesimLaunch, describe_launches
-from course_testing.recording import TopicRecorder
 
 NUMBER = r'(-?\d+\.\d+)'
 CRITERIA = {
     'builds': (),
-    'publisher_rate': ('launch_file', 'rate', 'id_number', 'skipped', 'messages', 'tolerance'),
+    'publisher_rate': ('launch_file', 'rate', 'id_number', 'skipped', 'messages', 'tolerance', 'real_time_factor'),
     'subscriber_prints': ('repeats',),
     'listener_prints_pose': ('launch_file', 'linear', 'angular', 'until_x', 'real_time_factor'),
     'circle': ('launch_file', 'start', 'radius', 'tolerance', 'turn_seconds', 'real_time_factor'),
@@ -55,10 +57,12 @@ class Exercise(TurtlesimLaunch):
     the criterion's real-time factor), logged to <name>.log, stopped at the end; turtlesim's window
     is kept as `picture`."""
 
-    def __init__(self, session, criterion, log_name, *args, picture=None, on_wall_clock=False):
+    def __init__(self, session, criterion, log_name, *args, picture=None, lock_step=False):
         self.deadline = Deadline(session.rubric.limits['run_seconds'])
+        self.real_time_factor = criterion['real_time_factor']   # how far the turtle drives between poses heard
         super().__init__(session, criterion['launch_file'], list(args), log_name, picture=picture,
-                         real_time_factor=None if on_wall_clock else criterion['real_time_factor'])
+                         real_time_factor=criterion['real_time_factor'],
+                         lock_step=lock_step)
 
     def on_interface(self, recorder, name):
         """A failing verdict when the turtle's poses came from another node than the course's
@@ -69,7 +73,7 @@ class Exercise(TurtlesimLaunch):
             owner = ', '.join(sorted(self.simulators)) or 'turtlesim'
             return faked(['x'], {'%s/pose' % name: others}, owner)['x']
         unused_calls = [turtle.no_unused_calls(simulator) for simulator in sorted(self.simulators)]
-        return next(filter(None, unused_calls), None) or turtle.no_jumps(recorder, name)
+        return next(filter(None, unused_calls), None) or turtle.no_jumps(recorder, name, self.real_time_factor)
 
     def wait(self, condition, seconds=None):
         """condition() within `seconds` (the run's time left at most); False as soon as the launch ended."""
@@ -84,27 +88,81 @@ class Exercise(TurtlesimLaunch):
         return 'expected `%s` to %s; seen: %s' % (self.command, what, self.run.error_lines())
 
 
+class HeldClockDriver:
+    """/clock for exercise 1, published by the grader: rates.HeldClock's time at real_time_factor,
+    holding at most `patience` wall seconds for each message due (then on until the next), and
+    each message on `topic` kept with its stamp on that clock."""
+    STEP_NS = 4000000   # 250 per simulated second, as turtlesim's /clock
+    PATIENCE = 1.0      # wall seconds a message due may take: a publisher kept that long from the processor
+
+    def __init__(self, topic, message_class, period, real_time_factor):
+        self.clock = rates.HeldClock(int(round(period * 1e9)), self.STEP_NS)
+        self.lock = threading.Lock()
+        self.heard_one = threading.Event()
+        self.stopped = threading.Event()
+        self.entries = []   # (stamp on the clock, message)
+        self.clock_pub = rospy.Publisher('/clock', Clock, queue_size=10)
+        self.subscriber = rospy.Subscriber(topic, message_class, self._heard, queue_size=1000)
+        self.pacer = Pacer(real_time_factor, time.monotonic())
+        self.thread = threading.Thread(target=self._run, name='held-clock', daemon=True)
+        self.thread.start()
+
+    def now(self):
+        return self.clock.now_ns / 1e9
+
+    def _heard(self, message):
+        with self.lock:
+            self.entries.append((self.clock.heard(), message))
+        self.heard_one.set()
+
+    def _run(self):
+        while not self.stopped.is_set():
+            self.heard_one.clear()
+            with self.lock:
+                now_ns = self.clock.next_ns()
+                holding = self.clock.holding()
+            if now_ns is None:
+                if holding and not self.heard_one.wait(self.PATIENCE):
+                    with self.lock:
+                        if self.clock.holding():
+                            self.clock.give_up()
+                continue
+            delay = self.pacer.due(now_ns) - time.monotonic()
+            if delay > 0:
+                self.stopped.wait(delay)
+            self.pacer.reached(now_ns, time.monotonic())
+            self.clock_pub.publish(Clock(rospy.Time(0, now_ns)))
+
+    def close(self):
+        self.stopped.set()
+        self.thread.join()
+        self.subscriber.unregister()
+        self.clock_pub.unregister()
+
+
 def check_publisher_subscriber(session):
     rate_c = session.rubric.criterion('publisher_rate')
     id_number, rate, skipped = str(rate_c['id_number']), rate_c['rate'], int(rate_c['skipped'])
     count = int(rate_c['messages']) + skipped
-    digits = TopicRecorder('/ZabirovaKostyukova', Int32)
-    # The publisher's rate is judged on the wall clock: no simulated clock for exercise 1.
-    exercise = Exercise(session, rate_c, 'exercise1.log', 'rate:=%g' % rate, 'id:=' + id_number, on_wall_clock=True)
-    window = 1.5 * count / rate   # seconds from the first digit: a slower publisher is measured over what came
+    # The publisher's rate is judged on a simulated clock the grader publishes, which waits for each
+    # message due (HeldClock): a busy machine delays the publisher, never its rate.
+    digits = HeldClockDriver('/ZabirovaKostyukova', Int32, 1.0 / rate, rate_c['real_time_factor'])
+    exercise = Exercise(session, rate_c, 'exercise1.log', 'rate:=%g' % rate, 'id:=' + id_number)
+    window = 1.5 * count / rate   # simulated seconds from the first digit: a slower publisher is measured over what came
 
     def measured_enough():
-        entries = digits.entries()
-        return len(entries) >= count or bool(entries and time.monotonic() - entries[0][0] > window)
+        entries = digits.entries
+        return len(entries) >= count or bool(entries and digits.now() - entries[0][0] > window)
     outcomes = {}
     try:
         exercise.wait(measured_enough, session.rubric.limits['start_seconds'] + window)
-        if digits.count() < skipped + 2:   # a rate needs two messages after those left out
+        entries = list(digits.entries)
+        if len(entries) < skipped + 2:   # a rate needs two messages after those left out
             outcomes['publisher_rate'] = Verdict(False, exercise.nothing(
-                'publish the digits of %s on /ZabirovaKostyukova; %d arrived' % (id_number, digits.count())))
+                'publish the digits of %s on /ZabirovaKostyukova; %d arrived' % (id_number, len(entries))))
         else:
-            measured = rates.rate_of(digits.entries()[skipped:count])
-            in_order = rates.cycles_through([digit.data for digit in digits.messages()], id_number)
+            measured = rates.rate_of(entries[skipped:count])
+            in_order = rates.cycles_through([digit.data for _, digit in entries], id_number)
             ok = abs(measured - rate) <= rate_c['tolerance'] and in_order.passed
             outcomes['publisher_rate'] = Verdict(ok, 'expected the digits of %s, in order, at %g Hz ± %g; seen '
                                                  '%.2f Hz%s' % (id_number, rate, rate_c['tolerance'], measured,
@@ -232,8 +290,10 @@ def check_shape(session, shape):
     start = tuple(criterion['spawn'])
     outline = figures.polygon(*start, side, {'square': 4, 'triangle': 3}[shape])
     poses = turtle.turtle_poses('robotics')
+    # The closed loop ends each side and turn from the pose: turtlesim waits for its answer to each
+    # pose (lock step), so a machine that keeps the student's node waiting does not move the turtle on.
     exercise = Exercise(session, criterion, 'exercise5_%s.log' % shape, *_args(session, shape),
-                        picture='%s.png' % shape)
+                        picture='%s.png' % shape, lock_step=True)
     try:
         finished = exercise.wait(lambda: exercise.printed(r'(Finished) the %s' % shape))
         path = turtle.pose_array(poses)

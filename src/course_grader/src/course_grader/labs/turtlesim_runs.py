@@ -3,7 +3,8 @@ node(s) left out (course_grader.turtlesim_launch), and in their place the course
 started by the grader on the trusted side (the course's environment only) with what the launch file
 gives it: its name, namespace, remappings and private parameters. With a real-time factor,
 turtlesim runs on its own simulated clock that much faster than real time, and so do the student's
-nodes (/use_sim_time)."""
+nodes (/use_sim_time); with lock_step too, each tick waits for the student's answer (turtlesim's
+~lock_step), so that a closed loop meets the same simulated delays at any factor and load."""
 import json
 import os
 import threading
@@ -20,7 +21,7 @@ from course_grader.turtlesim_launch import PREFIX
 
 MAX_TURTLESIMS = 3           # turtlesim nodes of one launch file started for it, at most
 MAX_PARAMS = 50              # of one turtlesim node's private parameters passed on, at most
-GRADERS_PARAMS = ('canvas_png', 'real_time_factor', 'clock_rate')   # set by the grader alone
+GRADERS_PARAMS = ('canvas_png', 'real_time_factor', 'clock_rate', 'lock_step')   # set by the grader alone
 LAUNCHER = ['/usr/bin/python3', '-s', '-m', 'course_grader.turtlesim_launch']
 
 
@@ -97,7 +98,7 @@ class TurtlesimLaunch:
     trusted side (turtlesim's lines logged to <log>_turtlesim.txt, its canvas kept as `picture` when
     it stops), the rest of the launch file on the student's side (logged to <log>.log)."""
 
-    def __init__(self, session, launch_file, args, log_name, real_time_factor=None, picture=None):
+    def __init__(self, session, launch_file, args, log_name, real_time_factor=None, picture=None, lock_step=False):
         self.session = session
         self.command = 'roslaunch %s %s%s' % (session.rubric.package, launch_file, ''.join(' ' + arg for arg in args))
         key = (launch_file, tuple(args))
@@ -114,13 +115,14 @@ class TurtlesimLaunch:
         # The student's nodes read /use_sim_time when they start: set before anything starts.
         rospy.set_param('/use_sim_time', real_time_factor is not None)
         for index, node in enumerate(self.declared):
-            self.start_turtlesim(node, real_time_factor, picture if index == 0 else None, wait=False)
+            self.start_turtlesim(node, real_time_factor, picture if index == 0 else None, wait=False,
+                                 lock_step=lock_step)
         # The rest starts beside turtlesim, as roslaunch starts a file's nodes: none waits for another.
         self.run = session.student(LAUNCHER + ['launch', session.rubric.package, launch_file] + list(args), log_name)
         for name in list(self.simulators):
             self.wait_for_turtlesim(name)
 
-    def start_turtlesim(self, node, real_time_factor=None, picture=None, wait=True):
+    def start_turtlesim(self, node, real_time_factor=None, picture=None, wait=True, lock_step=False):
         """The course's turtlesim as `node` declares it (name, remappings, private parameters);
         with `wait`, returns once it serves (or after start_seconds)."""
         name = node['name']
@@ -133,6 +135,7 @@ class TurtlesimLaunch:
         rospy.set_param(name + '/canvas_png', self.session.picture(picture) if picture else '')
         if real_time_factor is not None:
             rospy.set_param(name + '/real_time_factor', float(real_time_factor))
+            rospy.set_param(name + '/lock_step', lock_step)
         namespace, base = rosgraph.names.namespace(name), name.rsplit('/', 1)[-1]
         executable = roslib.packages.find_node('turtlesim', 'turtlesim_node')[0]   # the course's (our environment)
         launch = self.session.trusted([executable, '__name:=' + base, '__ns:=' + namespace]
