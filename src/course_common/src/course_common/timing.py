@@ -52,3 +52,9 @@ class Pacer:
         late, the pace starts again from here."""
         if now - self.due(sim_ns) > self.max_lag:
             self._anchor_wall, self._anchor_ns = now, sim_ns
+
+    def hold(self, sim_ns, now):
+        """Simulated time stood at sim_ns until wall time now: if that is later than its pace,
+        time goes on from there at the factor, without catching up the time it stood."""
+        if now > self.due(sim_ns):
+            self._anchor_wall, self._anchor_ns = now, sim_ns

@@ -31,3 +31,11 @@ def test_pacer_runs_simulated_time_at_the_factor_and_gives_up_catching_up():
     for bad in (0.0, -1.0, math.inf, math.nan):
         with pytest.raises(ValueError, match='real_time_factor must be a positive number'):
             Pacer(bad, start_wall=0.0)
+
+
+def test_pacer_after_a_hold_goes_on_from_it_without_catching_up():
+    pacer = Pacer(10.0, start_wall=100.0)
+    pacer.hold(10 ** 9, now=100.5)   # stood at 1 simulated second from 100.1 to 100.5
+    assert pacer.due(2 * 10 ** 9) == pytest.approx(100.6)
+    pacer.hold(2 * 10 ** 9, now=100.55)   # ahead of its pace (a hold that ended at once): kept
+    assert pacer.due(3 * 10 ** 9) == pytest.approx(100.7)

@@ -46,6 +46,7 @@ from course_common.timing import Pacer, Periodic
 from fake_tb3.imu import ImuSensor
 from fake_tb3.kinematics import wheel_turns
 from fake_tb3.lidar import Laser
+from fake_tb3.lock_step import LockStep
 from fake_tb3.models import UnknownModelError, get_model
 from fake_tb3.render import save_picture
 from fake_tb3.prebuilt import prebuilt
@@ -104,6 +105,8 @@ class RobotInterface:
     def on_cmd_vel(self, twist):
         linear, angular = twist.linear.x, twist.angular.z
         self.node.submit(lambda: self.apply_command(linear, angular))
+        if self.node.lock_step:
+            self.node.lock_step.commanded()   # after the submit: the next tick applies it
 
     def apply_command(self, linear, angular):
         """In the tick thread: the command to the simulation. At most one warning a second of
@@ -240,14 +243,20 @@ class FakeTb3Node:
                              robot.x, robot.y, world.name)
         self.physics = Periodic(rospy.get_param('~physics_rate', 100.0), 'physics_rate')
         self.imu_periodic = Periodic(rospy.get_param('~imu_rate', 30.0), 'imu_rate')
+        scan_periodic = Periodic(rospy.get_param('~scan_rate', 5.0), 'scan_rate')
         self.schedules = [
             (self.physics, self._step_physics),
             (Periodic(rospy.get_param('~odom_rate', 30.0), 'odom_rate'), self._publish_odometry),
             (Periodic(rospy.get_param('~joint_states_rate', 30.0), 'joint_states_rate'),
              self._publish_joint_states),
             (self.imu_periodic, self._publish_imu),
-            (Periodic(rospy.get_param('~scan_rate', 5.0), 'scan_rate'), self._publish_scans),
+            (scan_periodic, self._publish_scans),
         ]
+        # Each scan holds simulated time until it is answered (on simulated time only: the grader's).
+        lock_step = rospy.get_param('~lock_step', False)
+        if not isinstance(lock_step, bool):
+            raise ConfigError('parameter lock_step must be true or false, got %r' % (lock_step,))
+        self.lock_step = LockStep(1.0 / scan_periodic.rate) if lock_step and self.use_sim_time else None
         # Read once: a node that sets the parameter later cannot make this process write elsewhere.
         self.picture_png = str(rospy.get_param('~picture_png', ''))
         self.tf = rospy.Publisher('/tf', TFMessage, queue_size=100)  # as tf2_ros's broadcaster
@@ -332,6 +341,8 @@ class FakeTb3Node:
 
     def _publish_scans(self, stamp):
         # Also without subscribers: pictures show the scans.
+        if self.lock_step:
+            self.lock_step.scan_sent(stamp.to_nsec(), time.monotonic())
         for interface, ranges in zip(self.interfaces, self.simulation.scans()):
             interface.publish_scan(stamp, ranges)
 
@@ -356,12 +367,16 @@ class FakeTb3Node:
     # --- the loop ------------------------------------------------------------------------------
     def spin(self):
         """Step and publish until shutdown; simulated time runs real_time_factor x wall time
-        (far_real_time_factor x until something first comes within far_range ahead)."""
+        (far_real_time_factor x until something first comes within far_range ahead), with
+        lock_step no later than each scan until it is answered (fake_tb3.lock_step)."""
         far = self.far
         pacer = Pacer(self.far_real_time_factor if far else self.real_time_factor, time.monotonic())
         writer_turns = batched_writes.WriterTurns()
         while not rospy.is_shutdown():
             next_ns = min(periodic.next_ns for periodic, _ in self.schedules)
+            if self.lock_step and self.lock_step.holds(next_ns):
+                writer_turns.flush()   # the scan goes out before its answer is awaited
+                pacer.hold(*self.lock_step.await_answer(rospy.is_shutdown))
             due = pacer.due(next_ns)
             now = time.monotonic()
             if now < due:

@@ -24,8 +24,7 @@ CRITERIA = {
                         'angular', 'speed_tolerance', 'rate_hz', 'rate_tolerance'),
     'trajectory_circle': ('radius_tolerance', 'periods', 'min_travel'),
     'laser_data': SIMULATION + ('beams', 'blocks'),
-    'avoid_stops': SIMULATION + ('far_real_time_factor', 'far_range', 'min_drive', 'stopped_seconds', 'front_min',
-                                 'front_max'),
+    'avoid_stops': SIMULATION + ('lock_step', 'min_drive', 'stopped_seconds', 'front_min', 'front_max'),
     'avoid_stays': ('stay_seconds', 'max_creep'),
 }
 # What fake_tb3's world.launch gives the node beside a run's own settings.
@@ -259,7 +258,7 @@ def check_avoid_obstacle(session, simulators):
               world=stops_c['world'], x_pos=stops_c['x_pos'],
               y_pos=stops_c['y_pos'], noise_stddev=stops_c['noise_stddev'],
               noise_seed=stops_c['noise_seed'], real_time_factor=stops_c['real_time_factor'],
-              far_real_time_factor=stops_c['far_real_time_factor'], far_range=stops_c['far_range'])
+              lock_step=stops_c['lock_step'])
     try:
         watch = run.watch
         low, high = stops_c['front_min'], stops_c['front_max']
