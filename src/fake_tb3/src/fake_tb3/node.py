@@ -219,14 +219,6 @@ class FakeTb3Node:
         if self.real_time_factor <= 0:
             raise ConfigError('parameter real_time_factor must be positive, got %r'
                               % self.real_time_factor)
-        # Faster while nothing is near: the whole run at real_time_factor by default.
-        self.far_real_time_factor = _number(rospy.get_param('~far_real_time_factor', self.real_time_factor),
-                                            'far_real_time_factor')
-        if self.far_real_time_factor <= 0:
-            raise ConfigError('parameter far_real_time_factor must be positive, got %r'
-                              % self.far_real_time_factor)
-        self.far_range = _number(rospy.get_param('~far_range', 0.0), 'far_range', 0)
-        self.far = self.far_real_time_factor != self.real_time_factor
         clamp_speed = bool(rospy.get_param('~clamp_speed', False))
         cmd_vel_timeout = _number(rospy.get_param('~cmd_vel_timeout', 0.0), 'cmd_vel_timeout', 0)
         worlds_dir = os.path.join(rospkg.RosPack().get_path('fake_tb3'), 'worlds')
@@ -272,10 +264,8 @@ class FakeTb3Node:
                       self.service_calls.noted('~save_picture', self._on_save_picture))
         spawns = ', '.join('%s %s at (%.2f, %.2f, yaw %.2f)' % (r.name or 'robot', r.model.name,
                                                                  r.x, r.y, r.yaw) for r in robots)
-        rospy.loginfo('fake_tb3: world %s, %s, %s time x%g%s', world.name, spawns,
-                      'simulated' if self.use_sim_time else 'real', self.real_time_factor,
-                      ' (x%g while nothing is within %g m ahead)' % (self.far_real_time_factor, self.far_range)
-                      if self.far else '')
+        rospy.loginfo('fake_tb3: world %s, %s, %s time x%g', world.name, spawns,
+                      'simulated' if self.use_sim_time else 'real', self.real_time_factor)
 
     @staticmethod
     def _robot_specs():
@@ -318,8 +308,6 @@ class FakeTb3Node:
 
     def _step_physics(self, stamp):
         began = self.simulation.step(1.0 / self.physics.rate)
-        if self.far and not self.simulation.ahead_clear(self.far_range):
-            self.far = False   # for the rest of the run: spin() paces at real_time_factor from now
         for interface in self.interfaces:
             if interface.robot in began:
                 interface.collisions.publish(UInt32(interface.robot.collisions))
@@ -366,11 +354,9 @@ class FakeTb3Node:
 
     # --- the loop ------------------------------------------------------------------------------
     def spin(self):
-        """Step and publish until shutdown; simulated time runs real_time_factor x wall time
-        (far_real_time_factor x until something first comes within far_range ahead), with
-        lock_step no later than each scan until it is answered (fake_tb3.lock_step)."""
-        far = self.far
-        pacer = Pacer(self.far_real_time_factor if far else self.real_time_factor, time.monotonic())
+        """Step and publish until shutdown; simulated time runs real_time_factor x wall time,
+        with lock_step no later than each scan until it is answered (fake_tb3.lock_step)."""
+        pacer = Pacer(self.real_time_factor, time.monotonic())
         writer_turns = batched_writes.WriterTurns()
         while not rospy.is_shutdown():
             next_ns = min(periodic.next_ns for periodic, _ in self.schedules)
@@ -403,11 +389,6 @@ class FakeTb3Node:
                         return
                     raise
             writer_turns.maybe_flush()  # the messages go out while the simulation runs flat out
-            if far and not self.far:   # something came near in this tick: real_time_factor from here on
-                far = False
-                pacer = Pacer(self.real_time_factor, now - next_ns / 1e9 / self.real_time_factor)
-                rospy.loginfo('fake_tb3: something within %g m ahead at %.2f s: time x%g from now on',
-                              self.far_range, next_ns / 1e9, self.real_time_factor)
         writer_turns.flush()
 
     def shutdown_picture(self):

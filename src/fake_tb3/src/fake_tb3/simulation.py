@@ -6,7 +6,7 @@ import types
 
 import numpy as np
 
-from fake_tb3.geometry import box_outlines, boxes_overlap, cast_rays, clearance, nearby
+from fake_tb3.geometry import box_outlines, boxes_overlap, clearance, nearby
 from fake_tb3.kinematics import arc_poses, wheel_turns, wrap_angle
 from fake_tb3.lidar import scan_all
 
@@ -347,19 +347,6 @@ class Simulation:
                              'obstacle (collision %d)'
                              % (robot.label, robot.x, robot.y, robot.yaw, robot.collisions))
         return began
-
-    def ahead_clear(self, distance):
-        """Whether every robot's laser sees nothing straight ahead (beam 0, without noise) within
-        `distance` m, and no robot has touched anything yet."""
-        for robot in self.robots:
-            if robot.collisions:
-                return False
-            x, y, yaw = robot.laser_pose()
-            segments, circles = self.obstacles_for(robot)
-            near = robot.laser.spec.range_min if robot.laser else 0.0
-            if cast_rays(x, y, np.array([yaw]), near, distance, segments, circles)[0] <= distance:
-                return False
-        return True
 
     def snapshot(self):
         """A copy of what a picture shows (the world, the robots' poses, trails and latest scans)

@@ -122,23 +122,3 @@ def test_unknown_model_is_a_clear_error():
         get_model('burgerr')
     with pytest.raises(UnknownModelError):
         get_model(None)
-
-
-def test_ahead_clear_until_beam_0_sees_something_within_the_distance_or_a_contact():
-    # The turtlebot3_world spawn pose, heading for the hexagon's wall past the pillars beside the
-    # path: clear at 1.5 m until the wall is that near ahead (the laser 0.032 m behind the centre).
-    world = load_world('turtlebot3_world')
-    driving = robot(x=-2.0, y=-0.5, command=(0.5, 0.0))
-    simulation = Simulation(world, [driving])
-    clear_until = None
-    while driving.collisions == 0 and simulation.time < 20:
-        if clear_until is None and not simulation.ahead_clear(1.5):
-            clear_until = simulation.time
-        simulation.step(0.01)
-    ranges = simulation.scan(driving)
-    assert clear_until == pytest.approx(6.3, abs=0.02)   # at x 1.15: the wall 1.5 m ahead
-    # Touching the wall it is not clear at any distance, and a robot seen ahead counts.
-    assert ranges[0] < 0.2 and not simulation.ahead_clear(0.0)
-    other = robot(x=1.0)
-    assert not Simulation(World('empty'), [robot(), other]).ahead_clear(1.5)
-    assert Simulation(World('empty'), [robot(), other]).ahead_clear(0.5)
