@@ -6,6 +6,7 @@ follows a restarted turtlesim and fake_tb3, lets the simulators go when no page 
 Ctrl-C leaves no port behind."""
 import math
 import os
+import re
 import subprocess
 
 import numpy as np
@@ -21,7 +22,7 @@ from std_srvs.srv import Empty, Trigger
 from course_testing.browser import save_pixels
 from course_testing.processes import port_open, stop_process_group
 from course_testing.recording import TopicRecorder
-from course_testing.waiting import wait_until
+from course_testing.waiting import poll_until, wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute
 from view_in_browser import TS_BACKGROUND, ViewInBrowser, near_colour, ts_pixel
@@ -30,6 +31,12 @@ RED = np.array([255, 0, 0])
 LASER_RED = np.array([230, 20, 20])
 HEAD_GREEN = (150, 200, 110)  # the turtle's head and feet, as the page draws them
 PEN_WIDTH = 4
+
+
+def printed_near(text, x, y, tolerance):
+    """Whether the page's pose line, `x X m, y Y m, ...`, names a place within tolerance of (x, y)."""
+    found = re.match(r'x (-?[0-9.]+) m, y (-?[0-9.]+) m', text or '')
+    return bool(found) and abs(float(found.group(1)) - x) <= tolerance and abs(float(found.group(2)) - y) <= tolerance
 
 
 def dark_pixels(pixels, col, row, half_width, half_height):
@@ -148,8 +155,10 @@ class BrowserTest(ViewInBrowser):
         yaw = 2 * math.atan2(odom.orientation.z, odom.orientation.w)
         scan = self.scan.next_message(timeout=10)
         closest = min(r for r in scan.ranges if scan.range_min <= r <= scan.range_max)
-        wait_until(lambda: self.text('tb3-pose').startswith('x %.3f m, y %.3f m' % (x, y)), 10,
-                   'the page to print the pose x %.3f, y %.3f' % (x, y))
+        # Within the page's last digit: the view sends the pose to 0.1 mm and the page prints mm, so
+        # the two roundings can put the printed mm up to 0.55 mm from the place (Python rounds once).
+        if not poll_until(lambda: printed_near(self.text('tb3-pose'), x, y, 0.00056), 10):
+            self.fail('after 10 s the page printed %r, not the pose x %.4f, y %.4f' % (self.text('tb3-pose'), x, y))
         wait_until(lambda: self.text('tb3-closest') == '%.3f m' % closest, 10,
                    'the page to print the closest range %.3f m' % closest)
         pixels = self.canvas('tb3')
