@@ -38,6 +38,7 @@ from std_srvs.srv import Trigger, TriggerResponse
 from tf2_msgs.msg import TFMessage
 
 from course_common import batched_writes
+from course_common.lock_step import LockStep
 from course_common.request_queue import RequestQueue
 from course_common.sim_clock import stop_hearing_clock
 from course_common.service_calls_ros import ServiceCallTopic
@@ -46,7 +47,6 @@ from course_common.timing import Pacer, Periodic
 from fake_tb3.imu import ImuSensor
 from fake_tb3.kinematics import wheel_turns
 from fake_tb3.lidar import Laser
-from fake_tb3.lock_step import LockStep
 from fake_tb3.models import UnknownModelError, get_model
 from fake_tb3.render import save_picture
 from fake_tb3.prebuilt import prebuilt
@@ -330,7 +330,7 @@ class FakeTb3Node:
     def _publish_scans(self, stamp):
         # Also without subscribers: pictures show the scans.
         if self.lock_step:
-            self.lock_step.scan_sent(stamp.to_nsec(), time.monotonic())
+            self.lock_step.sent(stamp.to_nsec(), time.monotonic())
         for interface, ranges in zip(self.interfaces, self.simulation.scans()):
             interface.publish_scan(stamp, ranges)
 
@@ -355,7 +355,7 @@ class FakeTb3Node:
     # --- the loop ------------------------------------------------------------------------------
     def spin(self):
         """Step and publish until shutdown; simulated time runs real_time_factor x wall time,
-        with lock_step no later than each scan until it is answered (fake_tb3.lock_step)."""
+        with lock_step no later than each scan until it is answered (course_common.lock_step)."""
         pacer = Pacer(self.real_time_factor, time.monotonic())
         writer_turns = batched_writes.WriterTurns()
         while not rospy.is_shutdown():

@@ -4,12 +4,12 @@ times as fast as the wall clock (so that graders and checks can run the turtles 
 time; nodes on simulated time, rospy's and roscpp's Rate included, follow it). With ~lock_step as
 well, each tick of that clock also waits for a node's answer (a grader's closed-loop runs).
 """
-import threading
 import time
 
 import rospy
 from rosgraph_msgs.msg import Clock
 
+from course_common.lock_step import LockStep
 from course_common.sim_clock import stop_hearing_clock
 from course_common.timing import Pacer, Periodic
 from turtlesim.world import TICK_SECONDS
@@ -60,21 +60,14 @@ class SimulatedTicks:
         self.clock = Periodic(clock_rate, 'clock_rate')
         self.clock_pub = rospy.Publisher('/clock', Clock, queue_size=100)
         self.next_tick_ns = 0
-        self.lock_step = lock_step
-        self.answered = threading.Event()   # a command came since the last tick
-        self.last_tick_wall = time.monotonic()
+        self.lock_step = LockStep(TICK_SECONDS) if lock_step else None
         stop_hearing_clock()
         self._set(0)
 
     def commanded(self):
         """A velocity command came (any turtle's): with lock_step, the next tick may come."""
-        self.answered.set()
-
-    def _await_answer(self, running):
-        give_up = self.last_tick_wall + TICK_SECONDS
-        now = time.monotonic()
-        while now < give_up and running() and not self.answered.wait(min(give_up - now, 0.05)):
-            now = time.monotonic()
+        if self.lock_step:
+            self.lock_step.commanded()
 
     def _set(self, sim_ns):
         stamp = rospy.Time(0, sim_ns)
@@ -96,14 +89,14 @@ class SimulatedTicks:
             self._sleep_until(self.clock.next_ns, running)
             self._set(self.clock.next_ns)
             self.clock.advance()
-        if self.lock_step:
-            self._await_answer(running)
+        if self.lock_step and self.lock_step.holds(tick_ns):
+            self.lock_step.await_answer(lambda: not running())
         self._sleep_until(tick_ns, running)
         if self.clock.next_ns == tick_ns:
             self.clock.advance()
-        self.answered.clear()   # what comes from here on answers this tick's pose
+        if self.lock_step:   # what comes from here on answers this tick's poses
+            self.lock_step.sent(tick_ns, time.monotonic())
         self._set(tick_ns)
-        self.last_tick_wall = time.monotonic()
         self.next_tick_ns += TICK_NS
         return tick_ns / 1e9
 

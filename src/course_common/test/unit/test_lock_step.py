@@ -1,10 +1,10 @@
-"""~lock_step's hold of the simulated clock at each scan (fake_tb3.lock_step) with the pace of
-course_common.timing: answered scans go at the factor, unanswered ones at real time at most."""
+"""~lock_step's hold of the simulated clock at each scan (course_common.lock_step, as fake_tb3 uses
+it) with the pace of course_common.timing: answered scans go at the factor, unanswered ones at real time at most."""
 import threading
 import time
 
 from course_common.timing import Pacer, Periodic
-from fake_tb3.lock_step import LockStep
+from course_common.lock_step import LockStep
 
 SCAN_PERIOD = 0.05   # wall seconds these tests wait at most for an answer
 SCAN_NS = int(SCAN_PERIOD * 1e9)
@@ -17,13 +17,13 @@ def never():
 def test_only_ticks_after_the_scan_wait():
     lock = LockStep(SCAN_PERIOD)
     assert not lock.holds(10 ** 9)   # no scan sent yet
-    lock.scan_sent(SCAN_NS, time.monotonic())
+    lock.sent(SCAN_NS, time.monotonic())
     assert not lock.holds(SCAN_NS) and lock.holds(SCAN_NS + 1)
 
 
 def test_an_answer_since_the_scan_ends_the_wait_at_once():
     lock = LockStep(10.0)
-    lock.scan_sent(SCAN_NS, time.monotonic())
+    lock.sent(SCAN_NS, time.monotonic())
     lock.commanded()
     start = time.monotonic()
     held, ended = lock.await_answer(never)
@@ -34,14 +34,14 @@ def test_a_command_before_the_scan_is_no_answer_to_it():
     lock = LockStep(SCAN_PERIOD)
     lock.commanded()
     sent = time.monotonic()
-    lock.scan_sent(SCAN_NS, sent)
+    lock.sent(SCAN_NS, sent)
     _, ended = lock.await_answer(never)
     assert ended >= sent + SCAN_PERIOD
 
 
 def test_an_answer_from_another_thread_ends_the_wait():
     lock = LockStep(10.0)
-    lock.scan_sent(SCAN_NS, time.monotonic())
+    lock.sent(SCAN_NS, time.monotonic())
     threading.Timer(0.01, lock.commanded).start()
     _, ended = lock.await_answer(never)
     assert ended - time.monotonic() < 5.0 and lock.held_ns is None
@@ -49,7 +49,7 @@ def test_an_answer_from_another_thread_ends_the_wait():
 
 def test_shutdown_ends_the_wait():
     lock = LockStep(10.0)
-    lock.scan_sent(SCAN_NS, time.monotonic())
+    lock.sent(SCAN_NS, time.monotonic())
     start = time.monotonic()
     lock.await_answer(lambda: True)
     assert time.monotonic() - start < 5.0
@@ -74,7 +74,7 @@ def run_ticks(factor, scans, answer):
         if physics.next_ns == next_ns:
             physics.advance()
         if scan.next_ns == next_ns:
-            lock.scan_sent(next_ns, now)
+            lock.sent(next_ns, now)
             sent.append((next_ns / 1e9, now))
             scan.advance()
             if answer:
