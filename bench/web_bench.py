@@ -36,7 +36,7 @@ from nav_msgs.msg import Odometry
 
 from course_testing.browser import start_browser
 from course_testing.process_table import descendants
-from course_testing.processes import free_port, port_open, stop_process_group
+from course_testing.processes import build_environment, free_port, port_open, stop_process_group
 from course_testing.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn
@@ -78,16 +78,6 @@ def node_running(name):
 def percentile(values, fraction):
     values = sorted(values)
     return values[min(len(values) - 1, int(fraction * (len(values) - 1) + 0.5))]
-
-
-def build_environment(devel):
-    """The environment a shell has after sourcing that build's setup.bash (and this master)."""
-    output = subprocess.run(['bash', '-c', 'source "$0/setup.bash" && env -0', devel], check=True,
-                            stdout=subprocess.PIPE).stdout
-    environment = dict(line.split('=', 1) for line in output.decode().split('\0') if '=' in line)
-    environment['PATH'] = '/usr/bin:' + environment.get('PATH', '')
-    environment['ROS_MASTER_URI'] = os.environ['ROS_MASTER_URI']
-    return environment
 
 
 class Arrivals:

@@ -296,6 +296,46 @@ def test_a_first_run_starts_the_longest_steps_first_from_the_measured_seconds(tm
     assert 'long' in (tmp_path / 'times.txt').read_text()  # the next run uses its own times
 
 
+def test_beside_an_alone_job_more_jobs_share_its_core_only_while_their_last_cpu_fits(tmp_path):
+    """Jobs that mostly waited in their last run (CPU seconds over wall seconds) join the one held to
+    the core beside an alone job while their shares sum to at most BESIDE_SHARE; a job whose share is
+    unknown, or too large, waits for the alone jobs to end."""
+    jobs = load_run_test_jobs()
+    times = tmp_path / 'times.txt'
+    times.write_text('140.0\t35.0\ttour\n40.0\t6.0\tteleop\n90.0\t80.0\tbuilds\n20.0\tlistener\n'
+                     '12.0\t3.0\trates\n')
+    known = jobs.read_times(str(times))
+    assert known['tour'] == (140.0, 35.0) and known['listener'] == (20.0, None)  # the older form
+    share = lambda label: jobs.cpu_share(known, label)
+    assert share('tour') == 0.25 and share('listener') is None and share('unknown') is None
+    machine = FakeMachine()
+    side_by_side = jobs.SideBySide('auto', 2, sample=machine.sample, clock=lambda: machine.now)
+    waiting = [('builds', {0}, False, ''), ('teleop', {0}, False, ''), ('listener', {0}, False, '')]
+    alone = (None, 'rates', {0}, True, None, 0.0, 'mark', None)
+    tour = (None, 'tour', {0}, False, None, 0.0, 'mark', 1)
+    # 0.25 + 0.15 fits in 0.6; the builds (0.89) do not, the listener's share is unknown.
+    assert jobs.next_job(waiting, [alone, tour], side_by_side, 1, share) == (1, 1)
+    teleop = (None, 'teleop', {0}, False, None, 0.0, 'mark', 1)
+    assert jobs.next_job(waiting[:1] + waiting[2:], [alone, tour, teleop], side_by_side, 1, share) == (None, None)
+    # Without the shares (a first run with seconds only): one job beside, as before.
+    assert jobs.next_job(waiting, [alone, tour], side_by_side, 1) == (None, None)
+    assert jobs.next_job(waiting, [alone], side_by_side, 1) == (0, 1)
+    # The first beside it: the longest that mostly waited (the builds compute: two cores later).
+    assert jobs.next_job(waiting, [alone], side_by_side, 1, share) == (1, 1)
+    # A job of unknown share held beside: nothing joins it.
+    unknown = (None, 'listener', {0}, False, None, 0.0, 'mark', 1)
+    assert jobs.next_job(waiting[:2], [alone, unknown], side_by_side, 1, share) == (None, None)
+    # The next run reads the CPU seconds this run writes.
+    lines = 'tour\t0\tshared\tsleep 0.2\nrates\t0\talone\tsleep 0.1\n'
+    subprocess.run(['/usr/bin/python3', os.path.join(ROOT, 'tools', 'run_test_jobs.py'), '--jobs', '2',
+                    '--logs', str(tmp_path / 'logs'), '--times', str(times),
+                    '--failed-steps', str(tmp_path / 'failed.txt')],
+                   input=lines, stdout=subprocess.PIPE, universal_newlines=True, timeout=60, check=True)
+    again = jobs.read_times(str(times))
+    assert again['tour'][0] >= 0.2 and 0.0 <= again['tour'][1] < again['tour'][0], again
+    assert again['listener'] == (20.0, None)
+
+
 def test_jobs_get_ctrl_c_back_when_the_test_command_runs_in_the_background(tmp_path):
     """A background shell ignores SIGINT and SIGQUIT, and its programs inherit that; the jobs do not."""
     job, runner = tmp_path / 'job.txt', tmp_path / 'runner.txt'

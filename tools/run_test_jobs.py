@@ -11,13 +11,17 @@ Beside them runs at most one of the others, held to one core (the last one) unti
 has ended: an alone job then has at least one core to itself, which is what every test must hold
 with (another process keeping a core busy), and its minutes of waiting for real time are not lost
 to the others (with --jobs 1, or on a single core, nothing runs beside them).
+While an alone job runs, a second (and a third) job may join the one held to that core, when the CPU
+each used in the last run (its CPU seconds over its wall seconds, from FILE) leaves the core's sum at
+most BESIDE_SHARE: jobs that mostly wait for robots moving in real time share the core without
+making it busier than one process would.
 The others run N at a time; `--jobs auto` runs two, and a third while a whole core has been idle
 for the last few seconds (most steps wait for robots moving in real time, so on a quiet machine a
 third fits; on a shared or loaded one it does not start).
 
 Prints one line per job as it ends (label, seconds, CPU seconds of all it ran, exit status), and
 under a job that failed the lines of its log that say why. Each job's whole output goes to DIR/<label>.log. The durations are
-kept in FILE, so that the next run starts the longest jobs first (on a first run, those of
+kept in FILE (`wall seconds<TAB>CPU seconds<TAB>label`), so that the next run starts the longest jobs first (on a first run, those of
 --first-times, measured once on a 2-core machine; jobs unknown to both come first). A job that ends
 with any other exit status is written to --failed-steps, one per line: its results are not to be
 trusted (a pytest job's exit 5: it collected no tests). So is a job that leaves processes running: each job's
@@ -37,6 +41,8 @@ from course_testing.processes import restore_ctrl_c
 from course_testing.waiting import poll_until
 
 # The lines of a rostest or pytest log that say what failed.
+# How much of the held core the jobs beside an alone job may use together, from their last run.
+BESIDE_SHARE = 0.6
 WHY = re.compile(r'RESULT: FAIL|\[FAILURE\]|\[ERROR\] \[Testcase|^FAILED |^ERROR |Error:|'
                  r'timed out after|AssertionError|^E  ')
 
@@ -56,17 +62,26 @@ def read_jobs(stream):
 
 
 def read_times(path):
+    """{label: (wall seconds, CPU seconds or None)} from a file of `wall<TAB>CPU<TAB>label` lines
+    (or `wall<TAB>label`, the older form, without CPU)."""
     times = {}
     try:
         with open(path) as lines:
             for line in lines:
                 if line.startswith('#'):
                     continue
-                seconds, _, label = line.rstrip('\n').partition('\t')
-                times[label] = float(seconds)
-    except (OSError, ValueError):
+                fields = line.rstrip('\n').split('\t')
+                cpu = None if len(fields) == 2 or fields[1] == '-' else float(fields[1])
+                times[fields[-1]] = (float(fields[0]), cpu)
+    except (OSError, ValueError, IndexError):
         pass
     return times
+
+
+def cpu_share(times, label):
+    """The share of one core a job used in its last run (CPU over wall seconds), None if unknown."""
+    seconds, cpu = times.get(label, (None, None))
+    return cpu / seconds if cpu is not None and seconds else None
 
 
 def cpu_sample(stat='/proc/stat'):
@@ -107,24 +122,38 @@ class SideBySide:
         return idle_cores(before[1], self.since[1], self.cores) >= 1.0
 
 
-def next_job(waiting, running, side_by_side, beside_core):
+def next_job(waiting, running, side_by_side, beside_core, share=lambda label: None):
     """(index in `waiting` of the job to start now, the core it is held to or None), or (None, None)
-    when none may start yet. `running`: the running jobs' entries, whose [3] says alone and [-1] the
-    core a job is held to. Alone jobs come first in `waiting`; each starts when no other alone job runs
-    and nothing runs but one job held to beside_core; beside an alone job (running or next), one
-    other job may run, held to beside_core."""
+    when none may start yet. `running`: the running jobs' entries, whose [1] is the label, [3] says
+    alone and [-1] the core a job is held to. Alone jobs come first in `waiting`; each starts when no
+    other alone job runs and nothing runs but jobs held to beside_core; beside an alone job (running
+    or next), one other job may run, held to beside_core (the first that used at most BESIDE_SHARE of
+    a core in its last run, if any did), and more of them while the shares of one core they used in
+    their last run (`share(label)`, None if unknown) sum to at most BESIDE_SHARE."""
     running = list(running)
     alone_phase = waiting[0][2] or any(entry[3] for entry in running)
     if not alone_phase:
         return (0, None) if side_by_side.room(len(running)) else (None, None)
     if waiting[0][2] and not any(entry[3] for entry in running):
         if all(entry[-1] is not None for entry in running):
-            return 0, None  # nothing beside it but one job held to the other core
+            return 0, None  # nothing beside it but jobs held to the other core
         return None, None  # the others (not held to a core) end first
-    shared = next((index for index, job in enumerate(waiting) if not job[2]), None)
-    if beside_core is None or shared is None or any(not entry[3] for entry in running):
+    shared = [index for index, job in enumerate(waiting) if not job[2]]
+    held = [entry for entry in running if not entry[3]]
+    if beside_core is None or not shared or any(entry[-1] is None for entry in held):
         return None, None
-    return shared, beside_core
+    if not held:
+        # The longest that mostly waits, if one is known to: one that computes gets two cores later.
+        waits = [index for index in shared if (share(waiting[index][0]) or 1.0) <= BESIDE_SHARE]
+        return (waits or shared)[0], beside_core
+    used = [share(entry[1]) for entry in held]
+    if None in used:
+        return None, None
+    for index in shared:
+        more = share(waiting[index][0])
+        if more is not None and sum(used) + more <= BESIDE_SHARE:
+            return index, beside_core
+    return None, None
 
 
 def start_job(core):
@@ -171,7 +200,7 @@ def main():
     known.update(read_times(options.times))
     # Those that need the machine alone first; then the longest first, so that the last minutes
     # are not one long job alone (unknown ones first of all).
-    jobs.sort(key=lambda job: (not job[2], -known.get(job[0], float('inf'))))
+    jobs.sort(key=lambda job: (not job[2], -known.get(job[0], (float('inf'),))[0]))
     os.makedirs(options.logs, exist_ok=True)
     side_by_side = SideBySide(options.jobs, os.cpu_count() or 1)
     usable = sorted(os.sched_getaffinity(0))
@@ -180,7 +209,8 @@ def main():
     waiting, running, failed_steps, times = list(jobs), {}, [], dict(known)
     while waiting or running:
         while waiting:
-            index, core = next_job(waiting, running.values(), side_by_side, beside_core)
+            index, core = next_job(waiting, running.values(), side_by_side, beside_core,
+                                   share=lambda label: cpu_share(known, label))
             if index is None:
                 break
             label, codes, alone, command = waiting.pop(index)
@@ -214,9 +244,10 @@ def main():
         process.returncode = code
         seconds = time.monotonic() - start
         left = left_running(mark)
-        times[label] = seconds
         # The CPU time of the step and of every process it waited for (roslaunch's nodes included).
-        print('test: %s  (%.0f s, %.0f s CPU%s)' % (label, seconds, usage.ru_utime + usage.ru_stime,
+        cpu = usage.ru_utime + usage.ru_stime
+        times[label] = (seconds, cpu)
+        print('test: %s  (%.0f s, %.0f s CPU%s)' % (label, seconds, cpu,
                                                    '' if code == 0 else ', exit %d' % code), flush=True)
         if code != 0:
             with open(log_name(options.logs, label), errors='replace') as output:
@@ -238,7 +269,8 @@ def main():
     with open(options.failed_steps, 'w') as out:
         out.writelines(step + '\n' for step in failed_steps)
     with open(options.times, 'w') as out:
-        out.writelines('%.1f\t%s\n' % (seconds, label) for label, seconds in sorted(times.items()))
+        out.writelines('%.1f\t%s\t%s\n' % (seconds, '-' if cpu is None else '%.1f' % cpu, label)
+                       for label, (seconds, cpu) in sorted(times.items()))
     return 0
 
 

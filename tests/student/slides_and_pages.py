@@ -12,6 +12,7 @@ import csv
 import os
 import re
 import shutil
+from concurrent.futures import ThreadPoolExecutor
 
 from course_testing.process_table import command_line, marked_processes, new_mark, stop_marked
 from test_student_workspace import COURSE_DEVEL, ROOT, SLIDES
@@ -92,11 +93,14 @@ def check(student, lab, *options):
 
 
 def full_marks_then_checked(student, lab, full, criterion):
-    """The teacher's grading gives full marks; then the student's check of one criterion (the
-    grading has just proved the others) passes it. Returns what the check printed."""
-    score, most, row, output = grade(student, lab)
-    assert (score, most) == (full, full), (row, output[-2000:])
-    output = check(student, lab, '--only', criterion)
+    """The teacher's grading gives full marks, and the student's check of one criterion (the
+    grading proves the others) passes it; the two run side by side, as in two terminals (each
+    builds the package and waits for simulators). Returns what the check printed."""
+    with ThreadPoolExecutor(max_workers=1) as pool:
+        checking = pool.submit(check, student, lab, '--only', criterion)
+        score, most, row, output = grade(student, lab)
+        assert (score, most) == (full, full), (row, output[-2000:])
+        output = checking.result()
     assert re.findall(r'^(PASS|FAIL) (\S+)', output, re.M) == [('PASS', criterion)], output[-2000:]
     assert re.search(r'^check: %s (\d+) / \1, the other criteria not checked \(\d+ s\)$' % criterion, output,
                      re.M), output

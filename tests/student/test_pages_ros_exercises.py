@@ -1,5 +1,9 @@
 """Slides + pages = full marks: the ros_exercises lab (002, the report's Fig. 5 pasted),
-graded by the teacher's command and checked by the student's own (slides_and_pages.py says how)."""
+graded by the teacher's command and checked by the student's own (slides_and_pages.py says how).
+
+The package is the example class's model (the course's src/ros_exercises) with Fig. 5 pasted as
+circle.cpp, which the page's edits make the same program as the model's: this grading is also the
+model's in ./test.sh (grade_examples.test leaves the ros_exercises model out)."""
 import os
 import re
 import shutil
@@ -15,7 +19,7 @@ def test_ros_exercises_fig5_pasted_then_the_pages_edits_get_full_marks(student):
     make_package(student, 'catkin_create_pkg ros_exercises roscpp std_msgs geometry_msgs turtlesim', lab)
     package = os.path.join(student.workspace, 'src', lab)
     shutil.rmtree(package)
-    shutil.copytree(os.path.join(ROOT, 'src', lab), package)
+    shutil.copytree(os.path.join(ROOT, 'examples', 'grading', lab, 'model'), package)   # a link to src/ros_exercises
     circle = 'src/ros_exercises/src/circle.cpp'
     student.write(circle, slide('circle.cpp.txt', PASTED))
     status, output = student.run('catkin_make')

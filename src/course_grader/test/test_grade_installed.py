@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The grader as a teacher installs and feeds it: from an install space (no source tree, no devel
-space) and on the folder Moodle's "download all" gives, graded twice into one --out. A step of
-./test.sh of its own, beside grade_examples.test."""
+space) on the folder Moodle's "download all" gives, graded twice into one --out. A step of ./test.sh
+of its own, beside grade_examples.test (which grades the model from the devel space)."""
 import os
 import shutil
 import subprocess
@@ -20,33 +20,23 @@ INSTALLED = ['course_checks', 'course_common', 'course_environment', 'course_gra
 
 class GradeAsInstalledTest(unittest.TestCase):
 
-    def test_the_grader_runs_from_an_install_space(self):
+    @staticmethod
+    def bare_shell(home):
+        """A teacher's shell before any workspace is sourced: built in it, the install space's
+        setup.bash chains to Debian's ROS only, not to this workspace's devel space."""
+        return {'HOME': home, 'PATH': '/usr/bin:/bin'}
+
+    def test_the_installed_grader_grades_a_moodle_download_then_regrades_it(self):
+        """The name as Moodle wrote it and its id in the reports, then what changed since the first
+        run; every run in a shell with the install space only."""
         with tempfile.TemporaryDirectory() as folder:
             build = subprocess.run(['catkin_make', '--source', os.path.join(ROOT, 'src'), '--build',
                                     os.path.join(folder, 'build'), '-DCATKIN_DEVEL_PREFIX=%s/devel' % folder,
                                     '-DCMAKE_INSTALL_PREFIX=%s/install' % folder, '-DPYTHON_EXECUTABLE=/usr/bin/python3',
                                     '-DCATKIN_WHITELIST_PACKAGES=%s' % ';'.join(INSTALLED), 'install'],
                                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
-                                   stdin=subprocess.DEVNULL)
+                                   stdin=subprocess.DEVNULL, env=self.bare_shell(folder))
             self.assertEqual(build.returncode, 0, build.stdout[-3000:])
-            student = make_class('move_turtlebot3', os.path.join(folder, 'class'))['model']
-            out = os.path.join(folder, 'grades')
-            # A shell with the install space only: no source tree, no devel space on any path.
-            result = subprocess.run(['bash', '-c', 'source "$1/install/setup.bash" && cd / && rosrun course_grader grade --help '
-                                     '| grep "rubrics in" && rosrun course_grader grade move_turtlebot3 "$2" '
-                                     '--no-container --out "$3"', 'grade', folder, student, out],
-                                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
-                                    stdin=subprocess.DEVNULL, env={'HOME': folder, 'PATH': '/usr/bin:/bin'})
-            print(result.stdout)
-            self.assertEqual(result.returncode, 0, result.stdout)
-            rows, details = read_results(out)
-            self.assertEqual(rows['model']['score'], '14', details['model'])
-            self.assertIn('(rubrics in %s/install/share/course_grader/rubrics)' % folder, result.stdout)
-
-    def test_a_moodle_download_graded_as_it_is_then_regraded(self):
-        """The folder Moodle's "download all" gives, a zip inside, graded twice into one --out: the
-        name as Moodle wrote it and its id in the reports, then what changed since the first run."""
-        with tempfile.TemporaryDirectory() as folder:
             students = make_class('move_turtlebot3', os.path.join(folder, 'class'))
             moodle = os.path.join(folder, 'moodle', 'José Núñez_4711_assignsubmission_file_')
             os.makedirs(moodle)
@@ -54,18 +44,22 @@ class GradeAsInstalledTest(unittest.TestCase):
 
             def grade(package):
                 shutil.make_archive(os.path.join(moodle, 'catkin_ws'), 'zip', package)
-                run = subprocess.run(['rosrun', 'course_grader', 'grade', 'move_turtlebot3', moodle, '--no-container',
-                                      '--out', out], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                     universal_newlines=True, stdin=subprocess.DEVNULL)
+                # No source tree, no devel space on any path.
+                run = subprocess.run(['bash', '-c', 'source "$1/install/setup.bash" && cd / && rosrun course_grader '
+                                      'grade --help | grep "rubrics in" && rosrun course_grader grade move_turtlebot3 '
+                                      '"$2" --no-container --out "$3"', 'grade', folder, moodle, out],
+                                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                                     stdin=subprocess.DEVNULL, env=self.bare_shell(folder))
                 print(run.stdout)
                 self.assertEqual(run.returncode, 0, run.stdout)
+                self.assertIn('(rubrics in %s/install/share/course_grader/rubrics)' % folder, run.stdout)
                 os.remove(os.path.join(moodle, 'catkin_ws.zip'))
                 return run.stdout
 
             first = grade(students['into_the_wall'])
             self.assertIn('grade: [1/1] José Núñez (4711): 9 / 14', first)
             rows, details = read_results(out)
-            self.assertEqual((rows['José Núñez']['id'], rows['José Núñez']['score']), ('4711', '9'))
+            self.assertEqual((rows['José Núñez']['id'], rows['José Núñez']['score']), ('4711', '9'), details)
             self.assertTrue(os.path.isdir(os.path.join(out, 'José_Núñez_4711')))
             second = grade(students['model'])
             self.assertRegex(second, r'grade: \[1/1\] José Núñez \(4711\): 14 / 14 \(\d+ s\); before 9 / 14: '

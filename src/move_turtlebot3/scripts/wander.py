@@ -16,6 +16,7 @@ SLOW_DISTANCE = 1.0         # m: slow down when the way ahead is shorter than th
 FAR_ENOUGH = 2.0            # m: directions free this far are all good, the straighter the better
 SPEED = 0.22                # m/s: the burger's top speed
 TURN_SPEED = 1.0            # rad/s
+turn = 0.0                  # rad/s: the turn on the spot under way while blocked, 0 while driving
 
 
 def beams(msg):
@@ -47,6 +48,7 @@ def free_distance(msg, readings, heading, half_width=WINDOW):
 
 
 def callback(msg):
+    global turn
     readings = beams(msg)
     free = {heading: free_distance(msg, readings, heading) for heading in HEADINGS}
     best = max(HEADINGS, key=lambda h: min(free[h], FAR_ENOUGH) - 0.3 * abs(h))
@@ -57,9 +59,12 @@ def callback(msg):
         move.linear.x = 0.0                   # sees nothing at all: stand still
         move.angular.z = 0.0
     elif ahead < STOP_DISTANCE:
-        move.linear.x = 0.0                   # blocked ahead: turn on the spot toward open space
-        move.angular.z = TURN_SPEED if best > 0 or (best == 0 and left > right) else -TURN_SPEED
+        move.linear.x = 0.0                   # blocked ahead: turn on the spot toward open space,
+        if not turn:                          # and keep that way until the way ahead is free:
+            turn = TURN_SPEED if best > 0 or (best == 0 and left > right) else -TURN_SPEED
+        move.angular.z = turn                 # choosing at each scan, it can swing back and forth
     else:
+        turn = 0.0
         move.linear.x = SPEED * min(1.0, ahead / SLOW_DISTANCE)
         move.angular.z = max(-TURN_SPEED, min(TURN_SPEED, 1.5 * best))
         if min(left, right) < SIDE_DISTANCE:  # something close beside: steer away from it

@@ -31,9 +31,10 @@ class AvoidObstacleTest(LabTestCase):
         return driving.stopped_for(self.watch.copy('poses'), seconds)
 
     def drive_to_the_wall(self, noise):
-        # Low real-time factor: the node answers a scan within some wall-clock milliseconds, and
-        # every one of them lets the simulated robot drive on at 0.5 m/s.
-        self.start('wall_ahead', x_pos=-1.0, noise=noise, real_time_factor=2)
+        # In lock step: without it, the node answers a scan within some wall-clock milliseconds,
+        # and at 10x each of them lets the simulated robot drive on ten times as far at 0.5 m/s.
+        self.lock_step()
+        self.start('wall_ahead', x_pos=-1.0, noise=noise, real_time_factor=10)
         self.assertAlmostEqual(self.watch.copy('scans')[0].ranges[0],
                                WALL_X - (-1.0 - LASER_BEHIND_CENTRE), delta=0.05)
         wait_until(lambda: self.watch.copy('poses')[-1][1] > 0.0, timeout=30,

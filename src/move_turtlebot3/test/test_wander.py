@@ -27,8 +27,10 @@ def lds01_scan(ranges):
 class WanderTest(LabTestCase):
 
     def wander(self, noise, picture_png=''):
+        # In lock step, so that wander.py steers each scan at 20x as at 1x, on a busy machine too.
+        self.lock_step()
         self.launch = Launch.package_file('wander.launch', noise_stddev=noise,
-                                          real_time_factor=10, picture_png=picture_png)
+                                          real_time_factor=20, picture_png=picture_png)
         self.watch.wait_until_running()
         start = self.watch.now()
         self.watch.wait_sim_seconds(120, timeout=240)
@@ -74,6 +76,25 @@ class WanderTest(LabTestCase):
         self.assertEqual(answer_to([-math.inf] * 360)[0], 0.0)   # too close: no forward
         self.assertNotIn('Traceback', node.launch.output)
         self.assertIn('/wander', node_names())
+
+    def test_keeps_turning_one_way_until_the_way_ahead_is_free(self):
+        node = self.launch = LoneNode('wander.py')
+
+        def blocked_ahead(open_side):
+            # A pillar 0.3 m ahead (15 degrees either side), 1 m all around, open on one side.
+            ranges = [1.0] * 360
+            for index in range(16, 180):
+                ranges[index if open_side == 'left' else 359 - index] = math.inf
+            for index in list(range(0, 16)) + list(range(345, 360)):
+                ranges[index] = 0.3
+            return node.answer_to(lds01_scan(ranges))
+
+        self.assertEqual(blocked_ahead('left'), (0.0, 1.0))
+        # The open side changed while it turned (noise, the turn itself): choosing again at each
+        # scan could swing it back and forth in front of the pillar for good.
+        self.assertEqual(blocked_ahead('right'), (0.0, 1.0))
+        self.assertEqual(node.answer_to(lds01_scan([math.inf] * 360)), (0.22, 0.0))
+        self.assertEqual(blocked_ahead('right'), (0.0, -1.0))   # a new obstacle: chosen afresh
 
 
 if __name__ == '__main__':

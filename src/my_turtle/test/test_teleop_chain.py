@@ -80,6 +80,11 @@ class TeleopChainTest(unittest.TestCase):
         for _ in range(6):  # w: linear speed x1.1 each time
             self.chain.type('w')
         self.chain.wait_for_output('currently:\tspeed 0.354312\tturn 1', timeout=5)
+        # Faster still, so that the square takes less of the suite's time: the teleop ramps up at
+        # 0.2 m/s and 1 rad/s each second, so most of a side is the ramp.
+        for key in 'wwwwwwweeeeeee':   # e: angular speed x1.1 each time
+            self.chain.type(key)
+        self.chain.wait_for_output('currently:\tspeed 0.690454\tturn 1.94872', timeout=5)
         trail = []
         for _ in range(4):
             trail += self.forward_with_i(SIDE_M)

@@ -74,12 +74,13 @@ class Launch:
         errors = [line for line in lines if 'ERROR' in line or 'rror' in line or 'Exception' in line or 'not found' in line]
         return ' | '.join(errors[:count]) or 'no error printed'
 
-    def stop(self, timeout=30):
-        """Ctrl-C, as in the terminal (roslaunch stops its nodes), killed after `timeout` seconds.
+    def stop(self, timeout=30, stopped=None):
+        """Ctrl-C, as in the terminal (roslaunch stops its nodes), killed after `timeout` seconds,
+        or as soon as stopped() holds (a node that left the ROS graph: all that is left is its exit).
         True when it stopped in time, False when it had to be killed, None when it had already ended."""
         if self.process.poll() is not None:
             self._reader.join(5)
             return None
-        code = stop_process_group(self.process, timeout)
+        code = stop_process_group(self.process, timeout, stopped)
         self._reader.join(5)
-        return code != -signal.SIGKILL
+        return code != -signal.SIGKILL or bool(stopped and stopped())

@@ -27,16 +27,28 @@ class HeldClock:
     from the processor finds the clock where it left it), or until its caller gives up waiting:
     then the publisher is slower than that period and the clock no longer holds. The messages'
     stamps are the clock's time when they came: never earlier than the publisher published them,
-    and later by less than a period, by less and less from one message to the next (the clock
-    holds one period after the last), so the rate from first to last over n messages is the
-    publisher's within one period in n - 1."""
+    and later by the time the clock ran on meanwhile. Until `settling` messages have come, and
+    then on the step before each hold, the clock creeps (its caller waits a while after the step
+    for a message sent at it), so that the messages are heard before it moves on from the step they
+    were sent at, and the rate from first to last over n messages is the publisher's within a step
+    in n - 1. Without it, messages sent while the clock ran freely before the first one came could
+    keep the stamps periods late until they came at once, and a faster publisher's messages, heard
+    as the clock reached each hold, were stamped one period apart."""
 
-    def __init__(self, period_ns, step_ns):
+    def __init__(self, period_ns, step_ns, settling=0):
         self.period_ns = period_ns
         self.step_ns = step_ns
+        self.settling = settling   # messages to hear before the clock creeps only before each hold
+        self.heard_count = 0
         self.now_ns = 0
         self.hold_ns = None   # where the clock waits for the next message; None: it does not
         self.gave_up = False
+
+    def creeping(self):
+        """Whether the caller should wait a while for a message after this step, before the next:
+        until `settling` messages have come, and on the step before the hold."""
+        before_hold = self.hold_ns is not None and self.now_ns + self.step_ns >= self.hold_ns
+        return not self.gave_up and (self.heard_count < self.settling or before_hold)
 
     def holding(self):
         return self.hold_ns is not None and self.now_ns >= self.hold_ns
@@ -52,6 +64,7 @@ class HeldClock:
 
     def heard(self):
         """A message came: its stamp (seconds); the clock holds one period on."""
+        self.heard_count += 1
         if not self.gave_up:
             self.hold_ns = self.now_ns + self.period_ns
         return self.now_ns / 1e9

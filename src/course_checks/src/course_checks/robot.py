@@ -14,6 +14,7 @@ from std_msgs.msg import UInt32
 
 from course_checks.service_calls import ServiceCallWatch, sender
 from course_testing.recording import TopicRecorder, path_length
+from course_testing.waiting import poll_until
 
 SIMULATOR = '/fake_tb3'
 
@@ -56,6 +57,13 @@ class RobotWatch:
     def close(self):
         for recorder in self._recorders:
             recorder.close()
+
+    def drain(self, seconds):
+        """Once the simulator and the node have ended: wait until every message they sent has been
+        recorded (each connection read to its end), at most `seconds`. Whether it was."""
+        topics = [self._odom, self._scans, self._collisions, self._commands, self._clock]
+        return poll_until(lambda: not any(recorder.subscriber.get_num_connections() for recorder in topics),
+                          seconds)
 
     def impostors(self, simulator=SIMULATOR):
         """Topics the simulator owns (odom, scan, collisions, clock) on which another node sent

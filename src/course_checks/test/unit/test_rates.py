@@ -69,3 +69,77 @@ def test_a_slower_publisher_is_stamped_at_its_own_rate_and_the_clock_holds_no_mo
     stamps = _run(clock, [k * 100000000 for k in range(1, 8)], 1000)
     assert rate_of([(t, None) for t in stamps]) == pytest.approx(10.0)
     assert clock.hold_ns is None and not clock.holding()
+
+
+def _graded(clock, period_ns, latencies, creep_ticks=10, patience_ticks=1250, first_due_ns=2000000,
+            busy_ticks=0):
+    """The grader's clock and a publisher on it, tick by tick of wall time (one tick: one step at
+    the clock's pace): the publisher sends message k as soon as the clock has reached its due time
+    first_due_ns + k * period_ns (its schedule accumulates, as ros::Rate's), and it is heard
+    latencies[k] ticks later, in order and busy_ticks at least after the one before (the grader
+    hearing each in that time); the clock steps once a tick, but holds (given up after
+    patience_ticks), and while it creeps waits creep_ticks after a step for a message. Returns the
+    stamps of the messages heard."""
+    stamps, in_flight, sent, waited, last_arrival = [], [], 0, 0, 0
+    for tick in range(200000):
+        if len(stamps) == len(latencies):
+            break
+        heard_now = False
+        while in_flight and in_flight[0] <= tick:
+            in_flight.pop(0)
+            stamps.append(clock.heard())
+            heard_now = True
+        while sent < len(latencies) and clock.now_ns >= first_due_ns + sent * period_ns:
+            last_arrival = max(last_arrival + busy_ticks, tick + latencies[sent])
+            in_flight.append(last_arrival)
+            sent += 1
+        if clock.holding() and not heard_now:
+            waited += 1
+            if waited >= patience_ticks:
+                clock.give_up()
+        elif clock.creeping() and not heard_now and waited < creep_ticks:
+            waited += 1
+        else:
+            clock.next_ns()
+            waited = 0
+    return stamps
+
+
+def _measured(stamps, skipped=10, messages=100):
+    return rate_of([(t, None) for t in stamps[skipped:skipped + messages]])
+
+
+def test_messages_heard_late_at_first_do_not_raise_the_rate_once_the_clock_has_settled():
+    # At 50 Hz: the first 40 messages are heard 60 ticks after they were sent (at 5 steps a
+    # period, 12 periods), the others at once, as when the grader's receiving thread is kept from
+    # the processor while the publisher starts, and then catches up.
+    latencies = [60] * 40 + [0] * 70
+    unsettled = _measured(_graded(HeldClock(20000000, 4000000), 20000000, latencies))
+    assert unsettled > 55.0   # 57.4 Hz was seen on a machine at load 10
+    settled = _graded(HeldClock(20000000, 4000000, settling=10), 20000000, latencies, creep_ticks=80)
+    assert _measured(settled) == pytest.approx(50.0, abs=0.1)
+
+
+def test_a_settled_clock_measures_a_publisher_two_hertz_off_as_such():
+    late_at_first = [60] * 40 + [0] * 70
+    stamps = _graded(HeldClock(20000000, 4000000, settling=10), int(round(1e9 / 52)), late_at_first, creep_ticks=80)
+    assert _measured(stamps) == pytest.approx(52.0, abs=0.5)
+    # A slower one ends the hold (the clock holds no more): its messages are stamped as they come.
+    clock = HeldClock(20000000, 4000000, settling=10)
+    stamps = _graded(clock, int(round(1e9 / 48)), [3] * 110, creep_ticks=80)
+    assert clock.gave_up and _measured(stamps) == pytest.approx(48.0, abs=0.5)
+
+
+def test_a_clock_that_creeps_longer_than_the_messages_take_stamps_them_when_they_were_sent():
+    latencies = [3, 7, 1, 9, 2, 8, 5, 6, 4, 9, 0, 2, 9] * 9
+    stamps = _graded(HeldClock(20000000, 4000000, settling=10), 20000000, latencies, creep_ticks=10)
+    assert [round(later - earlier, 6) for earlier, later in zip(stamps[9:], stamps[10:])] == [0.02] * 107
+
+
+def test_a_faster_publisher_heard_slowly_is_measured_at_its_rate():
+    # The grader takes 12 ticks (10 ms of wall time at 5 times real time) to hear each message: a
+    # clock that ran on to its hold meanwhile stamped a 52 Hz publisher's messages at 50 Hz.
+    for rate in (50.0, 52.0):
+        stamps = _graded(HeldClock(20000000, 4000000, settling=10), int(round(1e9 / rate)), [0] * 110,
+                         creep_ticks=15, busy_ticks=12)
+        assert _measured(stamps) == pytest.approx(rate, abs=0.2)

@@ -7,7 +7,7 @@ import socket
 import subprocess
 import threading
 
-from course_testing.waiting import wait_until
+from course_testing.waiting import poll_until, wait_until
 
 
 def free_port():
@@ -59,14 +59,33 @@ def ignored_signals(status_text):
     return {number for number in range(1, 65) if mask & (1 << (number - 1))}
 
 
-def stop_process_group(process, timeout=15.0):
+def build_environment(devel):
+    """The environment a shell has after sourcing the setup.bash of another build of this
+    workspace (its devel folder), with this process's master: to run that build's nodes beside
+    this one's in a benchmark."""
+    output = subprocess.run(['bash', '-c', 'source "$0/setup.bash" && env -0', devel], check=True,
+                            stdout=subprocess.PIPE).stdout
+    environment = dict(line.split('=', 1) for line in output.decode().split('\0') if '=' in line)
+    environment['PATH'] = '/usr/bin:' + environment.get('PATH', '')
+    environment['ROS_MASTER_URI'] = os.environ['ROS_MASTER_URI']
+    return environment
+
+
+def stop_process_group(process, timeout=15.0, stopped=None):
     """SIGINT a process started with start_new_session=True and everything it started (as Ctrl-C
     in a terminal would, so ROS nodes shut down cleanly and save what they save at shutdown);
-    SIGKILL the group if it is still there after timeout seconds. Returns the exit code."""
+    SIGKILL the group if it is still there after timeout seconds, or as soon as stopped() holds
+    (a ROS node that has left the graph: what is left is its exit). Returns the exit code."""
     if process.poll() is None:
         try:
             os.killpg(process.pid, signal.SIGINT)
-            process.wait(timeout)
+            if stopped is None:
+                process.wait(timeout)
+            elif not poll_until(lambda: process.poll() is not None or stopped(), timeout):
+                raise subprocess.TimeoutExpired(process.args, timeout)
+            if process.poll() is None:
+                os.killpg(process.pid, signal.SIGKILL)
+                process.wait()
         except subprocess.TimeoutExpired:
             os.killpg(process.pid, signal.SIGKILL)
             process.wait()

@@ -40,6 +40,32 @@ def test_a_program_that_ignores_sigint_is_killed_after_the_timeout():
     assert stop_process_group(start(IGNORES_SIGINT), timeout=0.5) == -9
 
 
+# On SIGINT it writes a file (as a ROS node leaves the graph), then takes a minute to end.
+SLOW_TO_END = '''
+import signal, sys, time
+def stop(*_):
+    open(sys.argv[1], 'w').close()
+    time.sleep(60)
+    sys.exit(7)
+signal.signal(signal.SIGINT, stop)
+print('ready', flush=True)
+time.sleep(60)
+'''
+
+
+def test_a_program_is_killed_as_soon_as_it_has_stopped_by_the_callers_measure(tmp_path):
+    left = tmp_path / 'left'
+    process = subprocess.Popen([sys.executable, '-c', SLOW_TO_END, str(left)], stdout=subprocess.PIPE,
+                               start_new_session=True, universal_newlines=True)
+    assert process.stdout.readline().strip() == 'ready'
+    assert stop_process_group(process, timeout=50, stopped=left.exists) == -9   # not 7, after a minute
+    assert left.exists()
+
+
+def test_a_program_that_never_stops_by_the_callers_measure_is_killed_after_the_timeout():
+    assert stop_process_group(start(IGNORES_SIGINT), timeout=0.5, stopped=lambda: False) == -9
+
+
 def test_stopping_a_finished_program_returns_its_exit_code():
     process = subprocess.Popen([sys.executable, '-c', 'raise SystemExit(3)'], start_new_session=True)
     process.wait()

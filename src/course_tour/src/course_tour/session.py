@@ -85,13 +85,17 @@ class Session:
     def picture(self, name):
         return os.path.join(self.output_dir, name)
 
-    def launch(self, package, launch_file, env=None, **args):
-        """Start `roslaunch package launch_file name:=value ...` on the tour's master."""
+    def launch(self, package, launch_file, env=None, params=None, **args):
+        """Start `roslaunch package launch_file name:=value ...` on the tour's master, with `params`
+        ({name: value}) set on the master first; like the launch's own, they go when it is stopped."""
         argv = ['roslaunch', '--wait', package, launch_file]
         argv += ['%s:=%s' % (key, value) for key, value in args.items()]
         log_path = os.path.join(self.log_dir, '%02d-%s.log' % (len(os.listdir(self.log_dir)),
                                                               os.path.splitext(launch_file)[0]))
-        launched = Launched(argv, log_path, env or self.env, rospy.get_param_names())
+        before = rospy.get_param_names()
+        for name, value in (params or {}).items():
+            rospy.set_param(name, value)
+        launched = Launched(argv, log_path, env or self.env, before)
         self._launched.append(launched)
         return launched
 

@@ -19,6 +19,7 @@ node sets its own rospy time instead of hearing its own /clock.
 """
 import math
 import os
+import signal
 import sys
 import threading
 import time
@@ -210,8 +211,9 @@ class RobotInterface:
 class FakeTb3Node:
     """Runs the simulation loop: steps physics and publishes every topic at its simulated rate."""
 
-    def __init__(self):
+    def __init__(self, stop_requested=None):
         self.lock = threading.Lock()  # held by every tick and while a picture copies the simulation
+        self.stop_requested = stop_requested or threading.Event()   # set on Ctrl-C (main())
         self.requests = RequestQueue()  # what ROS callbacks ask of the simulation thread
         self.use_sim_time = bool(rospy.get_param('/use_sim_time', False))
         self.real_time_factor = _number(rospy.get_param('~real_time_factor', 1.0),
@@ -358,16 +360,16 @@ class FakeTb3Node:
         with lock_step no later than each scan until it is answered (course_common.lock_step)."""
         pacer = Pacer(self.real_time_factor, time.monotonic())
         writer_turns = batched_writes.WriterTurns()
-        while not rospy.is_shutdown():
+        while not self.stopping():
             next_ns = min(periodic.next_ns for periodic, _ in self.schedules)
             if self.lock_step and self.lock_step.holds(next_ns):
                 writer_turns.flush()   # the scan goes out before its answer is awaited
-                pacer.hold(*self.lock_step.await_answer(rospy.is_shutdown))
+                pacer.hold(*self.lock_step.await_answer(self.stopping))
             due = pacer.due(next_ns)
             now = time.monotonic()
             if now < due:
                 writer_turns.flush()  # what the last ticks published, before waiting
-            while now < due and not rospy.is_shutdown():
+            while now < due and not self.stopping():
                 time.sleep(min(due - now, 0.05))
                 now = time.monotonic()
             pacer.reached(next_ns, now)
@@ -391,6 +393,10 @@ class FakeTb3Node:
             writer_turns.maybe_flush()  # the messages go out while the simulation runs flat out
         writer_turns.flush()
 
+    def stopping(self):
+        """Ctrl-C (SIGINT) or SIGTERM came, or rospy shuts down (`rosnode kill`, the master's word)."""
+        return self.stop_requested.is_set() or rospy.is_shutdown()
+
     def shutdown_picture(self):
         if self.picture_png:
             path = os.path.abspath(os.path.expanduser(self.picture_png))
@@ -403,11 +409,18 @@ class FakeTb3Node:
 
 def main():
     batched_writes.install(rospy.topics)  # before any subscriber connects
-    rospy.init_node('fake_tb3')
+    # Ctrl-C ends the simulation, the picture is written, and only then does the node leave the ROS
+    # graph (rospy's own handler would leave it first): whoever waits for it to leave (the grader)
+    # has the picture, and need not wait for the rest of rospy's exit (0.6 s).
+    stop_requested = threading.Event()
+    rospy.init_node('fake_tb3', disable_signals=True)
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, lambda *_: stop_requested.set())
     try:
-        node = FakeTb3Node()
+        node = FakeTb3Node(stop_requested)
     except (ConfigError, UnknownModelError, WorldError, ValueError) as err:
         rospy.logfatal('fake_tb3: %s', err)
         sys.exit(1)
     node.spin()
     node.shutdown_picture()
+    rospy.signal_shutdown('stopped')

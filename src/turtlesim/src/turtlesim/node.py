@@ -17,9 +17,11 @@ service thread, so ticks stay on time. A turtle's topics and services are made a
 that fails half-way removes what it made, and the turtle) and a kill gives all of them back; the
 topics share one epoll (turtlesim.shared_poll), so a turtle holds no open file of its own. Only the
 turtles someone listens to are published (their publishers tell when a subscriber comes or goes),
-so 2000 turtles cost little more than the ones watched. Pictures copy the world under a lock and
-are drawn outside it.
+so 2000 turtles cost little more than the ones watched; the tick thread writes their poses and
+colours to the subscribers' sockets itself (course_common.batched_writes), so a publish wakes no
+writer thread of rospy's. Pictures copy the world under a lock and are drawn outside it.
 """
+import itertools
 import os
 import signal
 import sys
@@ -29,6 +31,7 @@ import rospy
 from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty, EmptyResponse
 
+from course_common import batched_writes
 from course_common.request_queue import RequestQueue, Stopped
 from course_common.service_calls_ros import ServiceCallTopic
 from turtlesim import picture, shared_poll
@@ -63,6 +66,11 @@ def _float32(value):
     return min(max(value, -FLOAT32_MAX), FLOAT32_MAX)
 
 
+def _batched(publisher):
+    batched_writes.batch(publisher)
+    return publisher
+
+
 def _unregister(topic):
     topic.unregister()
 
@@ -80,14 +88,14 @@ class TurtleInterface:
         self.name = name
         self.holdings = Holdings()
         self.pose = self.color = None
-        self._watchers = node.watched  # where this turtle is listed while someone listens
+        self._node = node  # lists this turtle in node.watched while someone listens
         listener = _Listeners(self)
         self.pose, self.color, _, _, _, _ = self.holdings.take_all([
-            ('pose publisher', lambda: rospy.Publisher(name + '/pose', Pose, queue_size=1,
-                                                       subscriber_listener=listener), _unregister),
-            ('color_sensor publisher', lambda: rospy.Publisher(name + '/color_sensor', Color, queue_size=1,
-                                                               subscriber_listener=listener),
+            ('pose publisher', lambda: _batched(rospy.Publisher(name + '/pose', Pose, queue_size=1,
+                                                                subscriber_listener=listener)),
              _unregister),
+            ('color_sensor publisher', lambda: _batched(rospy.Publisher(
+                name + '/color_sensor', Color, queue_size=1, subscriber_listener=listener)), _unregister),
             ('cmd_vel subscriber',
              lambda: rospy.Subscriber(name + '/cmd_vel', Twist, node.on_cmd_vel, name, queue_size=1), _unregister),
             ('set_pen service', lambda: node.service(name + '/set_pen', SetPen, lambda req: node.set_pen(name, req)),
@@ -106,22 +114,26 @@ class TurtleInterface:
         if self.pose is None or self.color is None:
             return  # still being made: __init__ looks once both exist
         if self.pose.get_num_connections() or self.color.get_num_connections():
-            self._watchers[self.name] = self
+            self._node.watched[self.name] = self
         else:
-            self._watchers.pop(self.name, None)
+            self._node.watched.pop(self.name, None)
+        self._node.watched_changed()
 
     def close(self):
         """Give everything back; what cannot be is reported, and the rest is still given back."""
-        self._watchers.pop(self.name, None)
+        self._node.watched.pop(self.name, None)
+        self._node.watched_changed()
         for label, error in self.holdings.release_all():
             rospy.logwarn('Turtle [%s]: could not remove its %s: %s' % (self.name, label, error))
 
     def publish(self, turtle):
-        if self.pose.get_num_connections():
-            self.pose.publish(Pose(turtle.x, turtle.y, turtle.theta, _float32(turtle.linear_velocity),
-                                   _float32(turtle.wz)))
-        if self.color.get_num_connections():
-            self.color.publish(Color(*turtle.color))
+        """In the tick thread: the turtle's pose and colour to their subscribers (the thread's
+        next flush of batched_writes sends them)."""
+        if batched_writes.subscribed(self.pose):
+            batched_writes.publish(self.pose, Pose(turtle.x, turtle.y, turtle.theta,
+                                                   _float32(turtle.linear_velocity), _float32(turtle.wz)))
+        if batched_writes.subscribed(self.color):
+            batched_writes.publish(self.color, Color(*turtle.color))
 
 
 class _Listeners(rospy.SubscribeListener):
@@ -160,6 +172,9 @@ class TurtlesimNode:
         self._registry_lock = threading.Lock()  # one spawn/kill/reset changes the interfaces at a time
         self.interfaces = {}  # turtle name -> TurtleInterface; replaced as a whole, never mutated
         self.watched = {}  # turtle name -> TurtleInterface of the turtles someone subscribes to
+        self._watched_changes = itertools.count()
+        self._watched_revision = next(self._watched_changes)  # changes whenever `watched` does
+        self._published = (None, [])  # ((world.roster, watched revision), [(turtle, interface)])
         self.service_calls = ServiceCallTopic()  # who called which service: the grader's checks read it
         self._sync_interfaces()
         self._services = [
@@ -196,18 +211,27 @@ class TurtlesimNode:
             with self.world_lock:
                 self.requests.run_pending(now)
                 self.world.tick(now)
-            # In the world's update order, as the original publishes; only those listened to.
-            watched = self.watched
-            if watched:
-                for turtle in self.world.turtles():
-                    interface = watched.get(turtle.name)
-                    if interface is not None:
-                        interface.publish(turtle)
-            self.scene_topic.after_tick()
+            for turtle, interface in self._watched_in_order():
+                interface.publish(turtle)
+            self.scene_topic.after_tick()  # flushes the poses too
         self.requests.fail_pending(TurtlesimError('turtlesim is shutting down'))
 
     def join(self):
         self._tick_thread.join()
+
+    def watched_changed(self):
+        """Any thread: `watched` changed (itertools.count's next() is atomic)."""
+        self._watched_revision = next(self._watched_changes)
+
+    def _watched_in_order(self):
+        """The turtles someone listens to, with their interfaces, in the world's update order (in
+        which the original publishes); worked out again only when turtles or listeners change."""
+        key = (self.world.roster, self._watched_revision)
+        if self._published[0] != key:
+            pairs = [(turtle, self.watched.get(turtle.name)) for turtle in self.world.turtles()]
+            self._published = (key, [(turtle, interface) for turtle, interface in pairs
+                                     if interface is not None])
+        return self._published[1]
 
     def service(self, name, service_class, handler):
         """A service of this node whose callers are noted on ~service_calls."""

@@ -9,6 +9,7 @@ requests (velocity commands, teleports, spawn/kill/clear/reset) between ticks. E
 raise TurtlesimError, whose text is what the user should read; log lines go to `log`, an object
 with info() and warning() (a logging.Logger will do).
 """
+import bisect
 import math
 import random
 import re
@@ -70,6 +71,10 @@ def pixel_index(coordinate):
     return int(math.floor(coordinate * PX_PER_METER + 0.5))
 
 
+def _by_name(turtle):
+    return turtle.name
+
+
 class Turtle:
     """One turtle: pose (x right, qt_y down, metres), commanded velocities, pen, pending teleports."""
 
@@ -107,9 +112,14 @@ class World:
         self._name_key = name_key or (lambda name: name)
         self._turtles = {}  # name_key(name) -> Turtle
         self._ordered = []  # update order: by name, as the original's std::map
+        self._active = []  # the turtles of _ordered that are not settled, in the same order
+        # The canvas version that every settled turtle has sensed; None when some may not have.
+        # While the canvas stays at it, a tick needs to visit only the active turtles.
+        self._sensed_version = None
         self._spawn_counter = 0
         self._rng = rng or random.Random()
         self.revision = 0  # changes whenever a turtle appears, disappears, moves or turns
+        self.roster = 0  # changes whenever a turtle appears or disappears
         self.spawn('', WORLD_SIZE / 2.0, WORLD_SIZE / 2.0, 0.0)
 
     # --- queries ---
@@ -155,8 +165,16 @@ class World:
         self._update_order()
 
     def _update_order(self):
-        self._ordered = sorted(self._turtles.values(), key=lambda turtle: turtle.name)
+        self._ordered = sorted(self._turtles.values(), key=_by_name)
+        self._active = [turtle for turtle in self._ordered if not turtle.settled]
         self.revision += 1
+        self.roster += 1
+
+    def _wake(self, turtle):
+        """A request changed what the turtle's next update does: it is visited at the next tick."""
+        if turtle.settled:
+            turtle.settled = False
+            bisect.insort(self._active, turtle, key=_by_name)
 
     def clear(self, background):
         self.log.info('Clearing turtlesim.')
@@ -177,7 +195,7 @@ class World:
         turtle = self._existing(name)
         turtle.vx, turtle.vy, turtle.wz = vx, vy, wz
         turtle.last_command = now
-        turtle.settled = False
+        self._wake(turtle)
 
     def set_pen(self, name, r, g, b, width, off):
         """off != 0 only lifts the pen; otherwise pen down with this colour, width 0 meaning 1."""
@@ -194,25 +212,60 @@ class World:
         check_finite('Cannot teleport [%s]' % name, x=x, y=y, theta=theta)
         turtle = self._existing(name)
         turtle.teleports.append((False, x, y, theta))
-        turtle.settled = False
+        self._wake(turtle)
 
     def teleport_relative(self, name, linear, angular):
         """Queued: turn by `angular`, then move `linear` along the new heading."""
         check_finite('Cannot teleport [%s]' % name, linear=linear, angular=angular)
         turtle = self._existing(name)
         turtle.teleports.append((True, linear, angular, None))
-        turtle.settled = False
+        self._wake(turtle)
 
     # --- the update loop ---
     def tick(self, now):
-        """One 16 ms step of every turtle, in name order."""
-        for turtle in self._ordered:
+        """One 16 ms step of every turtle, in name order.
+
+        A settled turtle only senses the colour under it, and only when the canvas changed since it
+        last did; so while the canvas stays as every settled turtle last sensed it, only the active
+        turtles are visited, until one of them draws: from there on, every turtle is visited."""
+        canvas = self.canvas
+        if self._sensed_version != canvas.version:
+            self._visit_all(self._ordered, now)
+            return
+        version = canvas.version
+        active = self._active
+        for done, turtle in enumerate(active, 1):
+            self._update(turtle, now)
+            self.revision += 1
+            if canvas.version != version:  # it drew: those after it sense the new canvas
+                rest = self._ordered[bisect.bisect_right(self._ordered, turtle.name, key=_by_name):]
+                still_active = [moved for moved in active[:done] if not moved.settled]
+                self._visit_all(rest, now)
+                self._active = still_active + self._active
+                self._sensed_version = None  # those before it sensed the canvas before it drew
+                return
+        self._active = [turtle for turtle in active if not turtle.settled]
+
+    def _visit_all(self, turtles, now):
+        """Update the active turtles and let the settled ones sense a changed canvas, in order;
+        self._active becomes the turtles of `turtles` still active."""
+        canvas = self.canvas
+        active = []
+        first_sensed = None  # the canvas version the first turtle settled after its turn sensed
+        for turtle in turtles:
             if turtle.settled:
-                if turtle.color_version != self.canvas.version:
+                if turtle.color_version != canvas.version:
                     self._sense_color(turtle)
             else:
                 self._update(turtle, now)
                 self.revision += 1
+                if not turtle.settled:
+                    active.append(turtle)
+                    continue
+            if first_sensed is None:
+                first_sensed = turtle.color_version
+        self._active = active
+        self._sensed_version = canvas.version if first_sensed in (None, canvas.version) else None
 
     def _draw(self, turtle, old_x, old_qt_y):
         self.canvas.draw_line(old_x * PX_PER_METER, old_qt_y * PX_PER_METER,

@@ -386,3 +386,52 @@ def test_updates_run_in_name_order(world, clock):
     world.teleport_absolute('abe', 3.0, 3.0, 0.0)  # abe draws a line ending under zed
     clock.run(world, 1)
     assert world.turtle('zed').color == (250, 0, 0)
+
+
+def test_a_resting_turtle_before_the_painter_in_name_order_senses_its_line_a_tick_later(world, clock):
+    """As in the original, each turtle reads the canvas at its turn in the tick."""
+    world.spawn('abe', 3.0, 3.0, 0.0)  # stays where it is
+    world.spawn('zed', 1.0, 3.0, 0.0)
+    world.set_pen('zed', 250, 0, 0, 3, 0)
+    clock.run(world, 3)
+    world.teleport_absolute('zed', 3.0, 3.0, 0.0)  # zed draws a line ending under abe
+    clock.run(world, 1)
+    assert world.turtle('abe').color == DEFAULT_BACKGROUND
+    clock.run(world, 1)
+    assert world.turtle('abe').color == (250, 0, 0)
+
+
+def _state(world):
+    return [(turtle.name, turtle.x, turtle.qt_y, turtle.theta, turtle.color) for turtle in world.turtles()]
+
+
+def test_ticks_that_skip_the_resting_turtles_give_what_visiting_every_turtle_gives(clock):
+    """A tick visits the resting turtles only when the canvas changed under them; a world made to
+    visit every turtle at every tick, given the same random requests, stays identical."""
+    import random
+    rng = random.Random(24)
+    worlds = [World(RecordingLog(), rng=random.Random(1)) for _ in range(2)]
+    for world in worlds:
+        for index in range(30):
+            world.spawn('t%02d' % index, 0.5 + index * 0.35, 0.5 + (index % 7) * 1.5, 0.0)
+            world.set_pen('t%02d' % index, 0, 0, 0, 0, index % 2)  # half of them draw
+    for tick in range(600):
+        name = 't%02d' % rng.randrange(30)
+        choice = rng.random()
+        for world in worlds:
+            request = random.Random(tick)
+            if choice < 0.02:
+                world.command_velocity(name, request.uniform(-2, 2), 0.0, request.uniform(-3, 3), clock.now)
+            elif choice < 0.08:  # a line ending under another turtle
+                target = world.turtle('t%02d' % request.randrange(30))
+                world.teleport_absolute(name, target.x, target.y, 0.0)
+            elif choice < 0.1:
+                world.set_pen(name, 10 * (tick % 25), 0, 0, 1 + tick % 4, tick % 3 == 0)
+            elif choice < 0.105:
+                world.clear((tick % 256, 0, 0))
+        worlds[1]._sensed_version = None  # noqa: SLF001 - the tick then visits every turtle
+        for world in worlds:
+            world.tick(clock.now)
+        clock.now += TICK_SECONDS
+        assert _state(worlds[0]) == _state(worlds[1])
+        assert (worlds[0].canvas.pixels == worlds[1].canvas.pixels).all()

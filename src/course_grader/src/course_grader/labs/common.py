@@ -24,7 +24,7 @@ class StudentNode:
             self.launch = session.student(['/usr/bin/python3', self.path] + list(ros_args),
                                           os.path.splitext(script_name)[0] + '.log')
         self.stopped_cleanly = None
-        self.was_started = False
+        self.names = set()   # of the ROS nodes it started
         self.output_before_stop = ''
         self.start_deadline = time.monotonic() + session.rubric.limits['start_seconds']
 
@@ -45,17 +45,28 @@ class StudentNode:
             return True
         return time.monotonic() > self.start_deadline and not self.started()
 
+    @property
+    def was_started(self):
+        return bool(self.names)
+
     def started(self):
         """A node of the student's registered with the master since the script started."""
-        if not self.was_started:
-            self.was_started = bool(node_names() - self.known_nodes - {'/fake_tb3'})
+        if not self.names:
+            self.names = node_names() - self.known_nodes - {'/fake_tb3'}
         return self.was_started
 
+    def left_the_graph(self):
+        """The ROS nodes it started are gone from the master (rospy leaves it first on Ctrl-C)."""
+        return not node_names() & self.names
+
     def stop(self):
+        """Ctrl-C; a node that started a ROS node has stopped once that node left the graph (rospy's
+        exit after that, 0.6 s, is not waited for); one that started none, once it ended."""
         if self.launch:
             self.started()
             self.output_before_stop = self.output   # what came after Ctrl-C is not the student's doing
-            self.stopped_cleanly = self.launch.stop(self.session.rubric.limits['stop_seconds'])
+            self.stopped_cleanly = self.launch.stop(self.session.rubric.limits['stop_seconds'],
+                                                    self.left_the_graph if self.names else None)
 
     def explain(self):
         """Hints about this run (missing script, Python 2 prints, crash, never stopped)."""

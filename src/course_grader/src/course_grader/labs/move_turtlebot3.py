@@ -8,7 +8,7 @@ import os
 import rospy
 
 from course_checks import driving, laser, service_calls
-from course_checks.robot import SIMULATOR, RobotWatch, largest_move, travelled
+from course_checks.robot import SIMULATOR, RobotWatch, largest_move, node_names, travelled
 from course_checks.verdict import Verdict
 from course_checks.waiting import Deadline
 from course_grader import feedback
@@ -29,6 +29,8 @@ CRITERIA = {
 }
 # What fake_tb3's world.launch gives the node beside a run's own settings.
 LAUNCH_DEFAULTS = {'cmd_vel_timeout': 0, 'clamp_speed': False, 'picture_png': '', 'robots': []}
+# Wall seconds at most for the messages of a run's last moments to be heard once it has stopped.
+DRAIN_SECONDS = 2.0
 # fake_tb3 as far as it goes without its parameters: its modules imported (half of its start), then
 # it waits until the FIFO named by its first argument is opened for writing, which only the trusted
 # side can do (the FIFO lies in its own folder), once the run's parameters are set.
@@ -141,6 +143,8 @@ class Run:
         for name, value in sorted(dict(LAUNCH_DEFAULTS, **sim_args).items()):
             rospy.set_param('%s/%s' % (SIMULATOR, name), value)
         self.sim = prepared.start(self.deadline.left())
+        # The node starts once the simulator runs: a submission that takes every process or the
+        # processor from the start has not kept fake_tb3 from starting (its nodes never start).
         if not self.deadline.wait(self.watch.running, gave_up=self.sim.ended):
             self.sim.stop(15)
             raise RuntimeError('the simulator did not start (see %s)' % self.sim_log)
@@ -176,8 +180,12 @@ class Run:
             self.simulators.prepare_next()
         except OSError:
             pass   # the sandbox has no process left now: the next run prepares its own when it starts
-        # The node and the simulator stop together (fake_tb3 saves its picture as it stops).
-        together(self.node.stop, functools.partial(self.sim.stop, 15))
+        # The node and the simulator stop together; fake_tb3 writes its picture before it leaves the
+        # ROS graph, and what is left of either then is its exit (not waited for).
+        together(self.node.stop, functools.partial(self.sim.stop, 15, lambda: SIMULATOR not in node_names()))
+        # Then everything fake_tb3 sent is heard: at 10x the scans a node printed last may have
+        # been sent just before the stop.
+        self.watch.drain(DRAIN_SECONDS)
         self.watch.close()
 
 
@@ -236,8 +244,8 @@ def check_laser_data(session, simulators):
         run.deadline.wait(lambda: len(laser.printed_blocks(laser.normalized(run.node.lines))) >= needed,
                           gave_up=run.node.ended)
         blocks = laser.printed_blocks(laser.normalized(run.node.lines))
-        scans = run.watch.copy('scans')
         run.stop()
+        scans = run.watch.copy('scans')   # every scan fake_tb3 sent, up to its stop
         hints = run.node.explain()
         if not blocks:
             if not hints:

@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""Exercise 1's held clock (labs.ros_exercises.HeldClockDriver) with the course's publisher, each
+message heard by the grader a random while after it came (15 ms on average, as when the grader's
+receiving thread waits for the processor on a busy machine): a 50 Hz publisher is measured at
+50 Hz, as the grader counts it (100 messages after the first 10), and one at 52 Hz at 52 Hz."""
+import random
+import subprocess
+import time
+import unittest
+
+import rospy
+import rostest
+from std_msgs.msg import Int32
+
+from course_checks import rates
+from course_grader.labs.ros_exercises import HeldClockDriver
+from course_testing.processes import stop_process_group
+from course_testing.waiting import wait_until
+
+SKIPPED, MESSAGES = 10, 100
+
+
+class LateHearingDriver(HeldClockDriver):
+    """The grader's driver, each message handed on late."""
+
+    def __init__(self, seed, *args):
+        self.lateness = random.Random(seed)
+        super().__init__(*args)
+
+    def _heard(self, message):
+        time.sleep(self.lateness.expovariate(1 / 0.015))   # the delay the test adds, not a wait
+        super()._heard(message)
+
+
+class HeldClockTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('held_clock_test')
+        rospy.set_param('/use_sim_time', True)   # for the publisher, after this node read it
+
+    def measured(self, rate, seed):
+        driver = LateHearingDriver(seed, '/ZabirovaKostyukova', Int32, 0.02, 5, SKIPPED)
+        publisher = subprocess.Popen(['rosrun', 'ros_exercises', 'publisher', '_rate:=%g' % rate, '_id:=4095127',
+                                      '__name:=publisher_%d' % seed], stdout=subprocess.DEVNULL,
+                                     start_new_session=True)
+        try:
+            wait_until(lambda: len(driver.entries) >= SKIPPED + MESSAGES, 60, 'the publisher\'s messages')
+            return rates.rate_of(driver.entries[SKIPPED:SKIPPED + MESSAGES])
+        finally:
+            driver.close()
+            stop_process_group(publisher)
+
+    def test_a_50_hz_publisher_heard_late_is_measured_at_50_hz(self):
+        for seed in (1, 2, 3):
+            self.assertAlmostEqual(self.measured(50, seed), 50.0, delta=0.5)
+
+    def test_a_52_hz_publisher_heard_late_is_measured_at_52_hz(self):
+        self.assertAlmostEqual(self.measured(52, 4), 52.0, delta=0.5)   # beyond the rubric's 1 Hz
+
+
+if __name__ == '__main__':
+    rostest.rosrun('course_grader', 'held_clock', HeldClockTest)
