@@ -10,12 +10,16 @@ from course_testing.processes import (ReadPtyProgram, free_port, ignored_signals
                                       together)
 from course_testing.waiting import wait_until
 
+# The programs below wait in short sleeps, as rospy.spin does. Python runs a signal handler between
+# its own steps: a signal that came after the print but before sleep's system call would be handled
+# only when a long sleep ends (a minute late, seen on a busy machine).
+WAIT_A_MINUTE = 'for _ in range(1200): time.sleep(0.05)'
+
 TRAPS_SIGINT = '''
 import signal, sys, time
 signal.signal(signal.SIGINT, lambda *_: sys.exit(7))
 print('ready', flush=True)
-time.sleep(60)
-'''
+''' + WAIT_A_MINUTE
 
 IGNORES_SIGINT = '''
 import signal, time
@@ -49,8 +53,7 @@ def stop(*_):
     sys.exit(7)
 signal.signal(signal.SIGINT, stop)
 print('ready', flush=True)
-time.sleep(60)
-'''
+''' + WAIT_A_MINUTE
 
 
 def test_a_program_is_killed_as_soon_as_it_has_stopped_by_the_callers_measure(tmp_path):
@@ -144,7 +147,8 @@ else:   # the default, even where the test runs with SIGHUP ignored (nohup) and 
 child = subprocess.Popen(['sleep', '600'], start_new_session=True)
 try:
     print(child.pid, flush=True)
-    time.sleep(600)
+    for _ in range(12000):
+        time.sleep(0.05)
 finally:
     child.kill()
 '''
