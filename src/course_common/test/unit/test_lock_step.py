@@ -39,6 +39,80 @@ def test_a_command_before_the_scan_is_no_answer_to_it():
     assert ended >= sent + SCAN_PERIOD
 
 
+class JumpingClock:
+    """Wall time that can jump ahead: a wait given up without spending it."""
+
+    def __init__(self):
+        self.offset = 0.0
+
+    def __call__(self):
+        return time.monotonic() + self.offset
+
+    def jump(self, seconds):
+        self.offset += seconds
+
+
+def unanswered(lock, clock, scans):
+    """`scans` scans sent whose waits end unanswered (the node is kept from the processor)."""
+    for _ in range(scans):
+        lock.sent(((lock.held_ns or 0) + SCAN_NS), clock())
+        clock.jump(lock.period)
+        lock.await_answer(never)
+
+
+def test_a_late_answer_is_no_answer_to_the_next_scan():
+    lock = LockStep(SCAN_PERIOD, late_answers=5)
+    lock.sent(SCAN_NS, time.monotonic())
+    lock.await_answer(never)      # nothing in time
+    sent = time.monotonic()
+    lock.sent(2 * SCAN_NS, sent)
+    lock.commanded()              # the late answer to the first scan
+    _, ended = lock.await_answer(never)
+    assert ended >= sent + SCAN_PERIOD
+
+
+def test_after_its_late_answers_the_answer_to_the_last_scan_ends_the_wait_at_once():
+    clock = JumpingClock()
+    lock = LockStep(10.0, late_answers=5, clock=clock)
+    unanswered(lock, clock, 2)
+    lock.sent(3 * SCAN_NS, clock())
+    for _ in range(3):
+        lock.commanded()
+    start = time.monotonic()
+    assert lock.await_answer(never)[0] == 3 * SCAN_NS
+    assert time.monotonic() - start < 5.0
+
+
+def test_late_answers_that_never_come_are_waited_for_once():
+    # A node that answers only the latest scan (a queue of one), after scans it never saw.
+    clock = JumpingClock()
+    lock = LockStep(SCAN_PERIOD, late_answers=5, clock=clock)
+    unanswered(lock, clock, 8)
+    sent = clock()
+    lock.sent(9 * SCAN_NS, sent)
+    lock.commanded()
+    _, ended = lock.await_answer(never)
+    assert ended >= sent + SCAN_PERIOD        # the answers it owes might still come
+    lock.period = 10.0
+    lock.sent(10 * SCAN_NS, clock())
+    lock.commanded()
+    start = time.monotonic()
+    lock.await_answer(never)
+    assert time.monotonic() - start < 5.0     # not any more: from then on it is in step
+
+
+def test_without_late_answers_any_command_answers_the_last_message():
+    # turtlesim's: its nodes also publish at rates of their own.
+    clock = JumpingClock()
+    lock = LockStep(10.0, clock=clock)
+    unanswered(lock, clock, 3)
+    lock.sent(4 * SCAN_NS, clock())
+    lock.commanded()
+    start = time.monotonic()
+    lock.await_answer(never)
+    assert time.monotonic() - start < 5.0
+
+
 def test_an_answer_from_another_thread_ends_the_wait():
     lock = LockStep(10.0)
     lock.sent(SCAN_NS, time.monotonic())

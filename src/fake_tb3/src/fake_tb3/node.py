@@ -58,6 +58,9 @@ from fake_tb3.world import WorldError, load_world
 ROS_LOG = types.SimpleNamespace(info=rospy.loginfo, warning=rospy.logwarn)
 # Pose and twist covariance of Gazebo's diff drive: x, y, z, roll, pitch, yaw.
 ODOM_COVARIANCE_DIAGONAL = (1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3)
+# With ~lock_step: the scans a node kept from the processor for up to a second of wall time may
+# still answer late, one by one, before it answers the latest (course_common.lock_step).
+LATE_SCANS = 5
 
 
 class ConfigError(ValueError):
@@ -250,7 +253,7 @@ class FakeTb3Node:
         lock_step = rospy.get_param('~lock_step', False)
         if not isinstance(lock_step, bool):
             raise ConfigError('parameter lock_step must be true or false, got %r' % (lock_step,))
-        self.lock_step = LockStep(1.0 / scan_periodic.rate) if lock_step and self.use_sim_time else None
+        self.lock_step = LockStep(1.0 / scan_periodic.rate, LATE_SCANS) if lock_step and self.use_sim_time else None
         # Read once: a node that sets the parameter later cannot make this process write elsewhere.
         self.picture_png = str(rospy.get_param('~picture_png', ''))
         self.tf = rospy.Publisher('/tf', TFMessage, queue_size=100)  # as tf2_ros's broadcaster
