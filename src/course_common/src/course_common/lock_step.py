@@ -37,6 +37,7 @@ class LockStep:
         self._changed = threading.Condition()
         self._owed = 0        # answers still to come: to what was sent, and late ones before it
         self._came = False    # a command came since the last message was sent
+        self._heard = False   # any command came yet: before, nobody answers, and nobody is late
         self.held_ns = None   # the time of what awaits its answer, None when nothing is held
         self._give_up = 0.0
 
@@ -44,7 +45,7 @@ class LockStep:
         """A velocity command came."""
         with self._changed:
             self._owed = max(self._owed - 1, 0)
-            self._came = True
+            self._came = self._heard = True
             self._changed.notify()
 
     def sent(self, sim_ns, wall):
@@ -52,7 +53,7 @@ class LockStep:
         a pose), before it goes out to the subscribers: what comes from now on answers it, after
         the late answers still owed to earlier ones."""
         with self._changed:
-            self._owed = min(self._owed + 1, self.late_answers + 1)
+            self._owed = min(self._owed + 1, self.late_answers + 1) if self._heard else 1
             self._came = False
             self.held_ns = sim_ns
             self._give_up = wall + self.period

@@ -55,13 +55,14 @@ class JumpingClock:
 def unanswered(lock, clock, scans):
     """`scans` scans sent whose waits end unanswered (the node is kept from the processor)."""
     for _ in range(scans):
-        lock.sent(((lock.held_ns or 0) + SCAN_NS), clock())
+        lock.sent(SCAN_NS, clock())   # (the simulated times play no part here)
         clock.jump(lock.period)
         lock.await_answer(never)
 
 
 def test_a_late_answer_is_no_answer_to_the_next_scan():
     lock = LockStep(SCAN_PERIOD, late_answers=5)
+    lock.commanded()              # the node has answered before
     lock.sent(SCAN_NS, time.monotonic())
     lock.await_answer(never)      # nothing in time
     sent = time.monotonic()
@@ -74,6 +75,9 @@ def test_a_late_answer_is_no_answer_to_the_next_scan():
 def test_after_its_late_answers_the_answer_to_the_last_scan_ends_the_wait_at_once():
     clock = JumpingClock()
     lock = LockStep(10.0, late_answers=5, clock=clock)
+    lock.sent(SCAN_NS, clock())
+    lock.commanded()
+    lock.await_answer(never)
     unanswered(lock, clock, 2)
     lock.sent(3 * SCAN_NS, clock())
     for _ in range(3):
@@ -87,7 +91,10 @@ def test_late_answers_that_never_come_are_waited_for_once():
     # A node that answers only the latest scan (a queue of one), after scans it never saw.
     clock = JumpingClock()
     lock = LockStep(SCAN_PERIOD, late_answers=5, clock=clock)
-    unanswered(lock, clock, 8)
+    lock.sent(SCAN_NS, clock())
+    lock.commanded()
+    lock.await_answer(never)
+    unanswered(lock, clock, 7)
     sent = clock()
     lock.sent(9 * SCAN_NS, sent)
     lock.commanded()
@@ -99,6 +106,18 @@ def test_late_answers_that_never_come_are_waited_for_once():
     start = time.monotonic()
     lock.await_answer(never)
     assert time.monotonic() - start < 5.0     # not any more: from then on it is in step
+
+
+def test_before_any_answer_the_first_one_answers_the_last_scan():
+    # The scans a simulator sends before the node has started are owed no answer.
+    clock = JumpingClock()
+    lock = LockStep(10.0, late_answers=5, clock=clock)
+    unanswered(lock, clock, 8)
+    lock.sent(9 * SCAN_NS, clock())
+    lock.commanded()
+    start = time.monotonic()
+    lock.await_answer(never)
+    assert time.monotonic() - start < 5.0
 
 
 def test_without_late_answers_any_command_answers_the_last_message():
