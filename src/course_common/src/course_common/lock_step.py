@@ -12,8 +12,8 @@ never makes the clock wait, which is only the clock without lock step. Any robot
 
 A node kept from the processor longer than a period answers late, and its messages queue up
 meanwhile: with late_answers, its late answers are counted off before a command answers the
-message just sent, so it is not one message behind from then on (without, the robot drove one
-scan further than it should, on a busy machine). Pure: no rospy.
+message just sent, so it is not one message behind from then on (each of its answers would move
+the robot one scan later than it should). Pure: no rospy.
 """
 import threading
 import time
