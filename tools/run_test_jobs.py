@@ -40,9 +40,9 @@ from course_testing.process_table import command_line, marked_processes, new_mar
 from course_testing.processes import restore_ctrl_c
 from course_testing.waiting import poll_until
 
-# The lines of a rostest or pytest log that say what failed.
 # How much of the held core the jobs beside an alone job may use together, from their last run.
 BESIDE_SHARE = 0.6
+# The lines of a rostest or pytest log that say what failed.
 WHY = re.compile(r'RESULT: FAIL|\[FAILURE\]|\[ERROR\] \[Testcase|^FAILED |^ERROR |Error:|'
                  r'timed out after|AssertionError|^E  ')
 
