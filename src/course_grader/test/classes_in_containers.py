@@ -12,16 +12,18 @@ import pytest
 
 from course_testing.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
 from example_class import EXAMPLES, ROOT, expected, labs, make_class, mismatches, outscored_twins, read_results
+from hostile_archive import link_chain_archive, markers_under
 
 
-def grade(lab, submissions, out, *options):
+def grade(lab, submissions, out, *options, temporary=None):
     """./grade.sh's result; once it has ended, nothing it started runs (its `docker run` clients
-    included: they carry the mark of its environment)."""
+    included: they carry the mark of its environment). temporary: its TMPDIR, when given."""
     mark = new_mark('COURSE_GRADER_TEST')
+    env = dict(os.environ, TMPDIR=temporary) if temporary else None
     try:
         result = subprocess.run([os.path.join(ROOT, 'grade.sh'), lab] + submissions + ['--out', out] + list(options),
                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
-                                stdin=subprocess.DEVNULL, env=with_mark(mark))
+                                stdin=subprocess.DEVNULL, env=with_mark(mark, env))
     finally:
         left = [command_line(pid) for pid in marked_processes(mark)]
         stop_marked(mark)
@@ -92,10 +94,19 @@ def test_example_class_in_containers(lab, tmp_path):
 def test_archives_and_grading_again_into_the_same_folder(archives, tmp_path):
     zipped, traversal, folder = archives
     out = str(tmp_path / 'grades')
-    result = grade('move_turtlebot3', [zipped, traversal, os.path.join(EXAMPLES, 'move_turtlebot3', 'model')], out)
+    # Issue 31's link chain around into_the_wall: an unpacker writing through the links would leave
+    # the marker in the grader's temporary folder, beside the scratch folder it unpacks in.
+    into_the_wall = make_class('move_turtlebot3', str(tmp_path / 'class'))['into_the_wall']
+    link_chain = link_chain_archive(str(tmp_path / 'link_chain.tar.gz'), os.path.join(into_the_wall, 'move_turtlebot3'))
+    temporary = tmp_path / 'tmp'
+    temporary.mkdir()
+    model = os.path.join(EXAMPLES, 'move_turtlebot3', 'model')
+    result = grade('move_turtlebot3', [zipped, traversal, link_chain, model], out, temporary=str(temporary))
     assert result.returncode == 0, result.stdout
     rows, details = read_results(out)
     assert rows['zipped_model']['score'] == rows['model']['score'] == '14'   # the same code, the same score
+    assert markers_under(str(tmp_path), folder) == []
+    assert float(rows['link_chain']['score']) <= expected('move_turtlebot3')['into_the_wall']['score']
     assert rows['traversal']['score'] == '0'
     assert "the archive holds '../../grader_was_here', which points outside its folder: refused" == \
         details['traversal']['error']

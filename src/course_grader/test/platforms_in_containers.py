@@ -6,18 +6,20 @@ Dockerfile (the course's root entered with chroot), a submission mounted at /aut
 and sentences as examples/grading/<lab>/expected.yaml says ./grade.sh gives them.
 Run by tools/platform-test.sh (CI, after tools/grade-test.sh), with COURSE_GRADER_IMAGE set."""
 import base64
+import io
 import json
 import os
 import re
 import shutil
 import subprocess
+import tarfile
 import time
 import zipfile
 
 import pytest
 import yaml
 
-from example_class import ROOT, expected, make_class
+from example_class import EXAMPLES, ROOT, expected, make_class
 
 IMAGE = os.environ.get('COURSE_GRADER_IMAGE')
 ENV_SH = os.path.join(ROOT, 'tools', 'env.sh')
@@ -216,9 +218,9 @@ def gradescope_images(tmp_path_factory):
         subprocess.run(['docker', 'rmi', image], stdout=subprocess.DEVNULL)
 
 
-def run_autograder(image, submission, tmp_path):
-    """run_autograder as Gradescope starts it (root, the submission at /autograder/submission).
-    Returns (results.json, what it printed, seconds)."""
+def run_autograder(image, submission, tmp_path, before=''):
+    """run_autograder as Gradescope starts it (root, the submission at /autograder/submission),
+    after the shell command `before` when given. Returns (results.json, what it printed, seconds)."""
     results = tmp_path / 'results'
     results.mkdir()
     started = time.monotonic()
@@ -227,7 +229,8 @@ def run_autograder(image, submission, tmp_path):
     run = subprocess.run(['docker', 'run', '--rm', '--network', 'none', '--user', 'root', '--memory', '1536m',
                           '--cpus', '1', '--pids-limit', '512',
                           '-v', '%s:/autograder/submission:ro' % submission, '-v', '%s:/autograder/results' % results,
-                          image, '/autograder/run_autograder'], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          image, 'bash', '-c', before + 'exec /autograder/run_autograder'], stdout=subprocess.PIPE,
+                         stderr=subprocess.STDOUT,
                          universal_newlines=True, stdin=subprocess.DEVNULL)
     seconds = time.monotonic() - started
     print(run.stdout)
@@ -261,3 +264,120 @@ def test_gradescope_bad_submission_is_one_sentence_in_results(name, gradescope_i
     assert data['score'] == 0
     assert 'not fully graded: %s' % BAD_INPUTS[name][1] in data['output']
     assert {t['output'] for t in data['tests']} == {BAD_INPUTS[name][1]}
+
+
+# An upload of one archive and, beside it, results.json of full marks. The archive's links, each
+# inside the archive's folder by its name, lead out of it when unpacked one through the other: in
+# the chroot, a/p is the unpacking's parent folder (/tmp), p/r the chroot's root, so that the last
+# lands at the chroot's /autograder/results/results.json, a link that the chroot's side follows to
+# its copy of the upload but run_autograder's outer side to Gradescope's own upload, the forgery.
+FORGED_LINK = ('autograder/results/results.json', '../../../../autograder/submission/forged.json')
+PLANTING_LINKS = [('a', '.'), ('a/p', '..'), ('p/r', '..'), ('p/r/' + FORGED_LINK[0], FORGED_LINK[1])]
+# The same link put in the chroot before the grading, as any other door of the chroot would leave it.
+PLANTED_IN_THE_CHROOT = 'mkdir -p /srv/ros-course/autograder/results && ln -s %s /srv/ros-course/%s && ' % (
+    FORGED_LINK[1], FORGED_LINK[0])
+FULL_MARKS = {'score': 14, 'output': 'forged', 'tests': [{'name': 'all', 'score': 14, 'max_score': 14}]}
+
+
+def new_folder(path):
+    path.mkdir()
+    return path
+
+
+def upload(package_folder, folder, links=()):
+    """`folder` as Gradescope keeps an upload: submission.tar.gz of what `package_folder` holds (and
+    `links`, symbolic, after it), and forged.json beside it."""
+    os.makedirs(folder)
+    with tarfile.open(os.path.join(folder, 'submission.tar.gz'), 'w:gz') as archive:
+        for name in sorted(os.listdir(package_folder)):
+            archive.add(os.path.join(package_folder, name), arcname=name)
+        for name, target in links:
+            member = tarfile.TarInfo(name)
+            member.type, member.linkname = tarfile.SYMTYPE, target
+            archive.addfile(member, io.BytesIO())
+    with open(os.path.join(folder, 'forged.json'), 'w') as stream:
+        json.dump(FULL_MARKS, stream)
+    return folder
+
+
+@pytest.mark.parametrize('planted_by', ['archive', 'chroot'])
+def test_gradescope_reads_no_link_planted_at_the_chroots_results(planted_by, gradescope_images, tmp_path):
+    package = student_folder('move_turtlebot3', 'cmake_error', tmp_path)
+    image = gradescope_images['move_turtlebot3']
+    twin, _, _ = run_autograder(image, upload(package, str(tmp_path / 'twin')), new_folder(tmp_path / 'twin_run'))
+    if planted_by == 'archive':
+        hostile, printed, _ = run_autograder(image, upload(package, str(tmp_path / 'hostile'), PLANTING_LINKS),
+                                             new_folder(tmp_path / 'hostile_run'))
+    else:
+        hostile, printed, _ = run_autograder(image, upload(package, str(tmp_path / 'hostile')),
+                                             new_folder(tmp_path / 'hostile_run'), before=PLANTED_IN_THE_CHROOT)
+    print('gradescope: planted by the %s: twin %s, hostile %s' % (planted_by, twin['score'], hostile['score']))
+    assert twin['score'] == expected('move_turtlebot3')['cmake_error']['score']
+    assert hostile['score'] <= twin['score']
+    assert 'total %g / 14' % hostile['score'] in printed   # results.json is the grading's own
+
+
+# The build starts it, in a session of its own: it finds the grading's ROS master among the
+# loopback's ports and, whenever trajectory.py's node is up, drives the robot in the circle that
+# node should have driven. Stopped after the build, it changes nothing.
+CIRCLE_DAEMON = """
+import os, socket, time, xmlrpc.client
+socket.setdefaulttimeout(1)
+def find_master():
+    for port in range(1024, 65536):
+        with socket.socket() as probe:
+            if probe.connect_ex(('127.0.0.1', port)):
+                continue
+        try:
+            if xmlrpc.client.ServerProxy('http://127.0.0.1:%d' % port).getSystemState('/d')[0] == 1:
+                return 'http://127.0.0.1:%d' % port
+        except Exception:
+            pass
+uri = find_master()
+while not uri:
+    time.sleep(0.5)
+    uri = find_master()
+os.environ['ROS_MASTER_URI'] = uri
+import rospy
+from geometry_msgs.msg import Twist
+rospy.init_node('circle_daemon', disable_signals=True)
+cmd_vel = rospy.Publisher('/cmd_vel', Twist, queue_size=1)
+move = Twist()
+move.linear.x, move.angular.z = 1.0, 1.0
+master = xmlrpc.client.ServerProxy(uri)
+while True:
+    if master.lookupNode('/d', '/vel_publisher')[0] == 1:
+        cmd_vel.publish(move)
+    time.sleep(0.1)
+"""
+# trajectory.py of both: a node that publishes nothing.
+SILENT_TRAJECTORY = "#!/usr/bin/env python3\nimport rospy\nrospy.init_node('vel_publisher')\nrospy.spin()\n"
+
+
+def silent_trajectory(folder, daemon):
+    """The model with SILENT_TRAJECTORY, in `folder`; with `daemon`, its build starts CIRCLE_DAEMON."""
+    package = os.path.join(folder, 'move_turtlebot3')
+    shutil.copytree(os.path.realpath(os.path.join(EXAMPLES, 'move_turtlebot3', 'model')), package)
+    with open(os.path.join(package, 'scripts', 'trajectory.py'), 'w') as stream:
+        stream.write(SILENT_TRAJECTORY)
+    if daemon:
+        with open(os.path.join(package, 'circle_daemon.py'), 'w') as stream:
+            stream.write(CIRCLE_DAEMON)
+        with open(os.path.join(package, 'CMakeLists.txt'), 'a') as stream:
+            stream.write('execute_process(COMMAND sh -c "setsid -f /usr/bin/python3 ${PROJECT_SOURCE_DIR}/circle_daemon.py '
+                         '</dev/null >/dev/null 2>&1")\n')
+    return folder
+
+
+def test_gradescope_stops_a_daemon_of_the_build_before_the_runs(gradescope_images, tmp_path):
+    image = gradescope_images['move_turtlebot3']
+    twin, _, _ = run_autograder(image, silent_trajectory(str(tmp_path / 'twin'), False),
+                                new_folder(tmp_path / 'twin_run'))
+    hostile, printed, _ = run_autograder(image, silent_trajectory(str(tmp_path / 'hostile'), True),
+                                         new_folder(tmp_path / 'hostile_run'))
+    scores = {name: [t['score'] for t in data['tests']] for name, data in (('twin', twin), ('hostile', hostile))}
+    print('gradescope: %s' % scores)
+    assert scores['hostile'] == scores['twin']
+    assert [t['score'] for t in hostile['tests'] if t['name'].endswith(('(trajectory_rate)', '(trajectory_circle)'))] \
+        == [0, 0]
+    assert 'cannot be stopped' not in printed

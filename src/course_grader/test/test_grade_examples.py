@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
-"""grade --no-container on the trusted examples of the example classes (no hostile one): scores and
-sentences as expected.yaml says, and nothing the grading started still running afterwards."""
+"""grade --no-container on the trusted examples of the example classes (no hostile code): scores and
+sentences as expected.yaml says, and nothing the grading started still running afterwards; and a
+Moodle download whose names and archive, not code, are hostile."""
+import csv
 import json
 import os
 import shutil
@@ -8,12 +10,14 @@ import signal
 import subprocess
 import tempfile
 import unittest
+import zipfile
 
 import rostest
 
 from course_testing.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
 from course_testing.waiting import wait_until
 from example_class import EXAMPLES, expected, labs, make_class, mismatches, read_results
+from hostile_archive import link_chain_archive, markers_under
 
 # What a build could do to the grading's ROS master (it can reach it): find it among the children of
 # the grading session, its ancestor, wait until the grader's own node is on it (the master is up and
@@ -48,11 +52,14 @@ for _ in range(600):
     time.sleep(0.1)
 """
 
-# Quick ones, and each kind of outcome: full marks, the slides as printed, a build failure. The
+# Quick ones, and each kind of outcome: full marks, the slides as printed, a build failure; and the
+# judge's doors that need no container (they only publish or print: a sender that says it is
+# fake_tb3, a laser block printed from a stored log). The
 # ros_exercises model (a link to src/ros_exercises) gets its 18 in tests/student/
 # test_pages_ros_exercises.py, which grades those files with Fig. 5 pasted as circle.cpp and edited
 # as its page says: a grading of the same package here would cost a build and six runs again.
-TRUSTED = {'move_turtlebot3': ['model', 'slides_as_printed', 'cmake_error'], 'my_turtle': ['slides_as_printed'],
+TRUSTED = {'move_turtlebot3': ['model', 'slides_as_printed', 'cmake_error', 'hostile_forged_sender', 'hostile_stored_scan'],
+           'my_turtle': ['slides_as_printed'],
            'ros_exercises': ['slides_as_printed']}
 
 
@@ -84,6 +91,45 @@ class GradeExamplesTest(unittest.TestCase):
                 # roscore, fake_tb3, turtlesim, the students' nodes: all gone (roslaunch's nodes
                 # run in sessions of their own, which no process group reaches).
                 self.assertEqual(tagged_processes(tag), [])
+
+    def test_hostile_names_and_a_link_chain_upload_from_moodle(self):
+        """A name that is a spreadsheet formula, handing in into_the_wall inside issue 31's link
+        chain, and a name with a line break and an escape sequence: nothing is written outside the
+        unpacking folder, no more than the twin's score, the cell is text, one line per student."""
+        tag = new_mark('COURSE_GRADER_TEST')
+        with tempfile.TemporaryDirectory() as folder:
+            package = os.path.join(make_class('move_turtlebot3', os.path.join(folder, 'class'))['into_the_wall'],
+                                   'move_turtlebot3')
+            formula = os.path.join(folder, 'moodle', '=HYPERLINK("x.example","Alice")_4712_assignsubmission_file_')
+            escapes = os.path.join(folder, 'moodle', 'Ann\x1b[31m\nLee_4713_assignsubmission_file_')
+            for upload in (formula, escapes):
+                os.makedirs(upload)
+            link_chain_archive(os.path.join(formula, 'catkin_ws.tar.gz'), package)
+            with zipfile.ZipFile(os.path.join(escapes, 'report.zip'), 'w') as report:   # no package in it
+                report.writestr('report.txt', 'my report')
+            # The grader unpacks in the temporary folder: an unpacker that writes through the links
+            # leaves the marker there, beside its scratch folder (removed after each student).
+            temporary = os.path.join(folder, 'tmp')
+            os.makedirs(temporary)
+            out = os.path.join(folder, 'grades')
+            result = subprocess.run(['rosrun', 'course_grader', 'grade', 'move_turtlebot3', '--no-container', '--jobs',
+                                     '2', '--out', out, formula, escapes], stdout=subprocess.PIPE,
+                                    stderr=subprocess.STDOUT, universal_newlines=True, stdin=subprocess.DEVNULL,
+                                    env=dict(with_mark(tag), TMPDIR=temporary))
+            print(result.stdout)
+            self.assertEqual(result.returncode, 0, result.stdout)
+            self.assertEqual(markers_under(folder), [])
+            self.assertEqual(tagged_processes(tag), [])
+            with open(os.path.join(out, 'grades.csv'), encoding='utf-8', newline='') as stream:
+                rows = {row['id']: row for row in csv.DictReader(stream)}
+        self.assertEqual(rows['4712']['student'], '\'=HYPERLINK("x.example","Alice")')
+        self.assertLessEqual(float(rows['4712']['score']), expected('move_turtlebot3')['into_the_wall']['score'])
+        self.assertEqual(rows['4713']['student'], 'Ann\x1b[31m\nLee')   # the name as Moodle wrote it
+        lines = [line for line in result.stdout.splitlines() if line.startswith('grade: [')]
+        self.assertEqual(len(lines), 2, result.stdout)
+        self.assertIn('] =HYPERLINK("x.example","Alice") (4712): ', '\n'.join(lines))
+        self.assertRegex('\n'.join(lines), r'\] Ann\\x1b\[31m\\nLee \(4713\): 0 / 14 \(\d+ s\): no package named move_')
+        self.assertNotIn('\x1b', result.stdout)
 
     def test_a_build_that_stops_the_master_gets_no_run_and_says_why(self):
         with tempfile.TemporaryDirectory() as folder:

@@ -1,5 +1,7 @@
 """The laser lines laser_data.py prints (the slide's five beams under a line of '='), and whether
-they are ranges of scans the simulator published."""
+they are ranges of scans the simulator published: any of them (printed_scans), or, with the time
+each line was read and each scan sent, the scan of the moment each block was printed, in order
+(printed_in_time)."""
 import math
 
 from course_checks.verdict import Verdict
@@ -15,15 +17,23 @@ def normalized(lines):
     return [SEPARATOR if len(s) >= 3 and set(s) == {'='} else s for s in stripped]
 
 
+def _block_starts(lines):
+    """Where each complete block printed with the slide's labels begins (its separator)."""
+    return [start for start, line in enumerate(lines)
+            if line == SEPARATOR and lines[start + 1:start + 11][0::2] == LABELS]
+
+
 def printed_blocks(lines):
     """The complete blocks printed with the slide's labels: lists of the 5 values (text). Anything
     else in the output (roslaunch, fake_tb3) is passed over."""
-    blocks = []
-    for start, line in enumerate(lines):
-        block = lines[start + 1:start + 11]
-        if line == SEPARATOR and block[0::2] == LABELS:
-            blocks.append(block[1::2])
-    return blocks
+    return [lines[start + 2:start + 11:2] for start in _block_starts(lines)]
+
+
+def timed_blocks(timed_lines):
+    """(time the block's last line was read, its 5 values) of each complete block in output lines
+    given as (time.monotonic() read, line)."""
+    lines = normalized([line for _, line in timed_lines])
+    return [(timed_lines[start + 10][0], lines[start + 2:start + 11:2]) for start in _block_starts(lines)]
 
 
 def _as_number(text):
@@ -43,11 +53,20 @@ def same_range(printed, sent):
     return printed == sent or abs(printed - sent) <= 1e-3
 
 
+def beam_ranges(scan, beams):
+    """The scan's ranges at `beams`, nan for a beam it does not have."""
+    return [scan.ranges[i] if i < len(scan.ranges) else math.nan for i in beams]
+
+
+def shows(block, ranges):
+    """A printed block (text) is these ranges."""
+    return all(same_range(p, s) for p, s in zip(block, ranges))
+
+
 def unmatched_blocks(blocks, scans, beams):
     """The printed blocks that are no published scan's ranges at those beams."""
-    published = [[scan.ranges[i] if i < len(scan.ranges) else math.nan for i in beams] for scan in scans]
-    return [block for block in blocks
-            if not any(all(same_range(p, s) for p, s in zip(block, ranges)) for ranges in published)]
+    published = [beam_ranges(scan, beams) for scan in scans]
+    return [block for block in blocks if not any(shows(block, ranges) for ranges in published)]
 
 
 def printed_scans(blocks, scans, beams, needed):
@@ -61,3 +80,55 @@ def printed_scans(blocks, scans, beams, needed):
     if unmatched:
         seen += ' (one printed %s)' % ', '.join(unmatched[0])
     return Verdict(len(blocks) >= needed and not unmatched, seen)
+
+
+def shown_scans(blocks, sent, beams, window):
+    """Which scan each printed block shows, in order. For (time.monotonic() read, values) blocks and
+    (time.monotonic() sent, LaserScan) scans: the index of the first scan after the previous
+    block's whose ranges the block printed, sent at most `window` s before the block was read (and
+    not after). The list stops at the first block that shows none."""
+    ranges = [beam_ranges(scan, beams) for _, scan in sent]
+    shown, after = [], -1
+    for read, block in blocks:
+        found = next((i for i in range(after + 1, len(sent))
+                      if 0 <= read - sent[i][0] <= window and shows(block, ranges[i])), None)
+        if found is None:
+            break
+        shown.append(found)
+        after = found
+    return shown
+
+
+def _why_unshown(block, read, sent, beams, shown):
+    """Why a block read at `read` shows no scan of its moment, the scans `shown` by the blocks
+    before it taken."""
+    same = [i for i, (_, scan) in enumerate(sent) if shows(block, beam_ranges(scan, beams))]
+    if not same:
+        return 'no scan sent had those ranges'
+    nearest = min(same, key=lambda i: abs(read - sent[i][0]))
+    age = read - sent[nearest][0]
+    when = '%.3f s %s it' % (abs(age), 'before' if age >= 0 else 'after')
+    if nearest in shown:
+        return 'that scan, sent %s, was printed already by block %d' % (when, shown.index(nearest) + 1)
+    if shown and nearest < shown[-1]:
+        return 'the scan with those ranges, sent %s, came before the one block %d printed' % (when, len(shown))
+    return 'the scan with those ranges was sent %s' % when
+
+
+def printed_in_time(blocks, sent, beams, needed, window):
+    """At least `needed` blocks were printed, each the scan of the moment it was printed, each a
+    later scan than the block before (shown_scans)."""
+    shown = shown_scans(blocks, sent, beams, window)
+    if len(shown) < len(blocks):
+        read, block = blocks[len(shown)]
+        start = sent[0][0] if sent else read
+        return Verdict(False, '%d scans printed; block %d, printed %.3f s after the first scan, shows no scan '
+                       'of the %.3f s before it%s (it printed %s; %s)' % (
+                           len(blocks), len(shown) + 1, read - start, window,
+                           ' later than block %d\'s' % len(shown) if shown else '', ', '.join(block),
+                           _why_unshown(block, read, sent, beams, shown)))
+    lags = [read - sent[i][0] for (read, _), i in zip(blocks, shown)]
+    seen = '%d scans printed (%d needed), each a later scan than the one before' % (len(blocks), needed)
+    if lags:
+        seen += ', printed %.1f to %.1f ms after it was sent' % (1000 * min(lags), 1000 * max(lags))
+    return Verdict(len(blocks) >= needed, seen)

@@ -7,6 +7,7 @@ import re
 import signal
 import subprocess
 import threading
+import time
 
 from course_testing.processes import stop_process_group
 
@@ -24,7 +25,7 @@ class Launch:
         # Unbuffered, so that what the nodes print reaches us line by line, as in a terminal.
         env = dict(os.environ if env is None else env, PYTHONUNBUFFERED='1')
         as_user = {'user': user, 'group': user, 'extra_groups': []} if user else {}
-        self._lines = collections.deque(maxlen=MAX_LINES)
+        self._lines = collections.deque(maxlen=MAX_LINES)   # (time.monotonic() it was read, line)
         self._lock = threading.Lock()
         self._log = open(log_path, 'w', errors='replace') if log_path else None
         self.process = subprocess.Popen(list(argv), stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
@@ -37,7 +38,7 @@ class Launch:
         logged = 0
         for line in self.process.stdout:
             with self._lock:
-                self._lines.append(line.rstrip('\n'))
+                self._lines.append((time.monotonic(), line.rstrip('\n')))
             if self._log and logged < MAX_LOG_BYTES:
                 try:
                     self._log.write(line)
@@ -57,6 +58,11 @@ class Launch:
 
     @property
     def lines(self):
+        return [line for _, line in self.timed_lines()]
+
+    def timed_lines(self):
+        """(time.monotonic() the line was read, line) of each line kept: when a node printed it, to
+        compare with when what it printed was published."""
         with self._lock:
             return list(self._lines)
 

@@ -1,8 +1,14 @@
 """The simulated TurtleBot3 as fake_tb3 publishes it: odometry (world pose, simulated time),
 scans, collisions, the commands and the clock, recorded; and who published them or called its
-services."""
+services.
+
+Two sources: fake_tb3's own record (course_common.sim_record), which the grader gives each run, so
+that what the checks judge is what the simulator did and nothing a node published; or, for the
+course's tests, fake_tb3's topics. Either way a node that publishes on fake_tb3's topics is named,
+by what the master and the connection tell, never by the name the sender gives itself."""
 import bisect
 import math
+import struct
 
 import rosgraph
 import rospy
@@ -12,11 +18,16 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import UInt32
 
+from course_checks.recorded import PublisherLook, RecordedTopic, Records
 from course_checks.service_calls import ServiceCallWatch, sender
 from course_testing.recording import TopicRecorder, path_length
 from course_testing.waiting import poll_until
 
 SIMULATOR = '/fake_tb3'
+# The topics only fake_tb3 publishes on (the checks judge by them).
+OWNED_TOPICS = ('/odom', '/scan', '/collisions', '/clock')
+# fake_tb3's pose entries (fake_tb3.node.RECORDED_POSE): x, y, yaw, linear, angular.
+RECORDED_POSE = struct.Struct('<5d')
 
 
 def node_names():
@@ -30,26 +41,62 @@ def node_names():
 
 
 def senders(recorder):
-    """The nodes that sent the messages a TopicRecorder kept (rospy notes each message's sender)."""
+    """The nodes that sent the messages a TopicRecorder kept (by the connection each came by)."""
     return {sender(message) for message in recorder.messages()}
 
 
-class RobotWatch:
-    """Everything the checks look at, recorded from fake_tb3's topics."""
+class SimRecord:
+    """What fake_tb3 recorded of its robot, read as it comes: poses (sim time s, x, y, yaw), scans
+    (wall time sent, LaserScan), the collision count, the commands it applied (sim time s, linear,
+    angular, sender) and the calls of its services (service, caller as the caller says)."""
 
-    def __init__(self, cmd_vel='/cmd_vel'):
-        self._odom = TopicRecorder('/odom', Odometry)
-        self._scans = TopicRecorder('/scan', LaserScan)
-        self._collisions = TopicRecorder('/collisions', UInt32)
-        self._commands = TopicRecorder(cmd_vel, Twist)
-        self._clock = TopicRecorder('/clock', Clock)
-        self._service_calls = ServiceCallWatch(SIMULATOR)
-        self._recorders = [self._odom, self._scans, self._collisions, self._commands, self._clock,
-                           self._service_calls]
+    def __init__(self, path):
+        self.records = Records([path])
+        self.scans = RecordedTopic(self.records, 'scan', LaserScan)
+        self._poses = []
+
+    def poses(self):
+        new = self.records.entries('pose')[len(self._poses):]
+        self._poses += [(entry.sim_time,) + RECORDED_POSE.unpack(entry.payload)[:3] for entry in new]
+        return list(self._poses)
+
+    def collisions(self):
+        told = self.records.events('collisions')
+        return told[-1]['count'] if told else None
+
+    def commands(self):
+        return [(entry.sim_time, fields['linear'], fields['angular'], fields['sender'])
+                for entry, fields in ((entry, entry.fields()) for entry in self.records.entries('command'))]
+
+    def service_calls(self):
+        """Each service called, with its first caller, in the order of the first calls."""
+        first = {}
+        for call in self.records.events('service_call'):
+            first.setdefault(call['service'], call['caller'])
+        return list(first.items())
+
+
+class RobotWatch:
+    """Everything the checks look at: from fake_tb3's record when `record` names its file (the
+    grader's runs), else from fake_tb3's topics (the course's tests)."""
+
+    def __init__(self, cmd_vel='/cmd_vel', record=None):
+        self._record = SimRecord(record) if record else None
+        self._publishers = PublisherLook(OWNED_TOPICS, [SIMULATOR]) if record else None
+        self._recorders = []
+        if not record:
+            self._odom = TopicRecorder('/odom', Odometry)
+            self._scans = TopicRecorder('/scan', LaserScan)
+            self._collisions = TopicRecorder('/collisions', UInt32)
+            self._commands = TopicRecorder(cmd_vel, Twist)
+            self._clock = TopicRecorder('/clock', Clock)
+            self._service_calls = ServiceCallWatch(SIMULATOR)
+            self._recorders = [self._odom, self._scans, self._collisions, self._commands, self._clock,
+                               self._service_calls]
         self._poses_so_far = []  # the odometry converted so far: checks poll the poses often
 
     def reset(self):
-        """Forget everything: call between two runs of the simulator."""
+        """Forget everything: call between two runs of the simulator (topics only)."""
         for recorder in self._recorders:
             recorder.clear()
         self._poses_so_far = []
@@ -57,17 +104,29 @@ class RobotWatch:
     def close(self):
         for recorder in self._recorders:
             recorder.close()
+        if self._publishers:
+            self._publishers.look(0)
+            self._publishers.close()
 
     def drain(self, seconds):
         """Once the simulator and the node have ended: wait until every message they sent has been
-        recorded (each connection read to its end), at most `seconds`. Whether it was."""
+        recorded (each connection read to its end; the record read to its end), at most `seconds`.
+        Whether it was."""
+        if self._record:
+            self._record.poses()
+            self._publishers.look(0)
+            return True
         topics = [self._odom, self._scans, self._collisions, self._commands, self._clock]
         return poll_until(lambda: not any(recorder.subscriber.get_num_connections() for recorder in topics),
                           seconds)
 
     def impostors(self, simulator=SIMULATOR):
-        """Topics the simulator owns (odom, scan, collisions, clock) on which another node sent
-        messages that were recorded: {topic: sorted node names}."""
+        """Topics the simulator owns (odom, scan, collisions, clock) on which another node
+        published: {topic: sorted node names}. From the record: the nodes the master listed as
+        their publishers (what they sent never counted); from the topics: the nodes at the other
+        end of the connections messages came by."""
+        if self._record:
+            return {topic: sorted(nodes) for topic, nodes in sorted(self._publishers.look(0).items())}
         found = {}
         for name, recorder in (('odom', self._odom), ('scan', self._scans), ('collisions', self._collisions),
                                ('clock', self._clock)):
@@ -78,16 +137,22 @@ class RobotWatch:
 
     def service_calls(self):
         """[(service, caller)] of fake_tb3's services, as fake_tb3 noted them: the lab uses none."""
+        if self._record:
+            return self._record.service_calls()
         return self._service_calls.calls()
 
     @property
     def collisions(self):
         """The simulator's latest collision count, None before it told one."""
+        if self._record:
+            return self._record.collisions()
         latest = self._collisions.latest()
         return None if latest is None else latest.data
 
     def _poses(self):
-        """(sim time s, x, y, yaw) of every odometry message."""
+        """(sim time s, x, y, yaw) of every odometry message (every pose recorded)."""
+        if self._record:
+            return self._record.poses()
         for odom in self._odom.messages(len(self._poses_so_far)):
             orientation = odom.pose.pose.orientation
             self._poses_so_far.append((odom.header.stamp.to_sec(), odom.pose.pose.position.x,
@@ -95,7 +160,10 @@ class RobotWatch:
         return list(self._poses_so_far)
 
     def _timed_commands(self):
-        """(sim time s of the latest clock when it arrived, or None; linear, angular) of every command."""
+        """(sim time s, linear, angular) of every command: as fake_tb3 applied it (the record), or
+        the latest clock when it arrived, None before the first (the topics)."""
+        if self._record:
+            return [(t, linear, angular) for t, linear, angular, _ in self._record.commands()]
         clock = self._clock.entries()
         clock_arrivals = [arrival for arrival, _ in clock]
         commands = []
@@ -105,23 +173,42 @@ class RobotWatch:
             commands.append((sim_time, command.linear.x, command.angular.z))
         return commands
 
+    def scan_entries(self):
+        """(time.monotonic() the scan was sent (the record) or heard (the topics), LaserScan) of
+        every scan."""
+        if self._record:
+            return self._record.scans.entries()
+        return self._scans.entries()
+
+    def command_senders(self):
+        """The senders of the commands fake_tb3 applied, as it named them (the record only)."""
+        if self._record:
+            return sorted({command[3] for command in self._record.commands()})
+        return []
+
     def copy(self, name):
         """What was recorded so far: 'poses', 'scans' or 'commands'."""
-        return {'poses': self._poses, 'scans': self._scans.messages, 'commands': self._timed_commands}[name]()
+        return {'poses': self._poses, 'scans': lambda: [scan for _, scan in self.scan_entries()],
+                'commands': self._timed_commands}[name]()
 
     def running(self):
         """The simulator publishes odometry and scans and has told its collision count."""
+        if self._record:
+            return bool(self._record.poses() and self._record.scans.count() and self._record.collisions() is not None)
         return bool(self._odom.count() and self._scans.count() and self.collisions is not None)
 
     def now(self):
         """Simulated time of the latest odometry."""
+        if self._record:
+            return self._record.poses()[-1][0]
         return self._odom.latest().header.stamp.to_sec()
 
     def poses_since(self, start):
         return [pose for pose in self.copy('poses') if pose[0] >= start]
 
     def front_range(self):
-        return self._scans.latest().ranges[0]
+        scans = self.scan_entries()
+        return scans[-1][1].ranges[0]
 
 
 def travelled(poses):

@@ -3,15 +3,22 @@
 (fake_tb3's, turtlesim's teleports and /reset) is named, and the criteria judged on that run fail."""
 from std_msgs.msg import String
 
+from course_common import sim_record_ros
 from course_common.service_calls import parse
 from course_checks.verdict import Verdict
 from course_checks.waiting import wait_for
 from course_testing.recording import TopicRecorder
 
 
+sim_record_ros.install()   # from now on each message received carries its sender
+
+
 def sender(message):
-    """The node that sent a message (rospy notes it in the message's connection header)."""
-    return getattr(message, '_connection_header', {}).get('callerid', '?')
+    """The node that sent a message: the node the master registered at the address this process
+    connected to (its name; a sentence naming them, or the address, when several or none), never
+    the caller id the sender wrote into its connection header."""
+    told = sim_record_ros.sender_of(message)
+    return told['nodes'][0] if len(told['nodes']) == 1 else told['label']
 
 
 class ServiceCallWatch:

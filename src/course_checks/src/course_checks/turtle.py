@@ -121,10 +121,10 @@ def no_jumps(recorder, turtle, real_time_factor=1.0):
                    'a teleport or /reset, which this lab does not use' % (turtle, len(found), x0, y0, x1, y1))
 
 
-def no_unused_calls(simulator):
-    """A failing verdict naming who called a teleport or /reset of turtlesim (as turtlesim noted
-    the call), or None when nobody did."""
-    calls = service_calls.unused(service_calls.heard_calls(simulator), UNUSED_SERVICES)
+def no_unused_calls(calls):
+    """A failing verdict naming who called a teleport or /reset of turtlesim, among the calls
+    [(service, caller)] turtlesim noted, or None when nobody did."""
+    calls = service_calls.unused(calls, UNUSED_SERVICES)
     return service_calls.called(['x'], calls)['x'] if calls else None
 
 

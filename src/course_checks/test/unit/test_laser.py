@@ -53,3 +53,105 @@ def test_a_missing_beam_is_nan_on_both_sides():
     short = LaserScan(ranges=[math.nan] * 100)
     assert laser.unmatched_blocks([['nan', 'nan', 'x', 'x', 'x']], [short], BEAMS) == [['nan', 'nan', 'x', 'x', 'x']]
     assert laser.unmatched_blocks([['nan'] * 5], [short], BEAMS) == []
+
+
+# Judged in time: blocks as (time read, values), scans as (time sent, LaserScan), in seconds.
+PERIOD = 0.02      # a scan every 0.02 wall s (5 Hz at 10x)
+WINDOW = 0.1
+
+
+def sent(count):
+    """`count` scans, each unlike the one before (a turning robot), one every PERIOD from 0."""
+    return [(i * PERIOD, scan(1.0 + i / 10)) for i in range(count)]
+
+
+def block(read, message):
+    return (read, values(message))
+
+
+def test_each_scan_printed_as_it_comes_is_shown_in_order():
+    scans = sent(5)
+    blocks = [block(t + 0.002, message) for t, message in scans[1:]]
+    assert laser.shown_scans(blocks, scans, BEAMS, WINDOW) == [1, 2, 3, 4]
+    verdict = laser.printed_in_time(blocks, scans, BEAMS, 4, WINDOW)
+    assert verdict.passed
+    assert verdict.reason == ('4 scans printed (4 needed), each a later scan than the one before, printed 2.0 to '
+                              '2.0 ms after it was sent')
+
+
+def test_a_node_that_skips_scans_or_lags_within_the_window_passes():
+    scans = sent(10)
+    blocks = [block(scans[2][0] + 0.09, scans[2][1]), block(scans[7][0] + 0.001, scans[7][1])]
+    assert laser.shown_scans(blocks, scans, BEAMS, WINDOW) == [2, 7]
+    assert laser.printed_in_time(blocks, scans, BEAMS, 2, WINDOW).passed
+
+
+def test_a_stored_block_printed_again_and_again_fails_at_its_second_print():
+    scans = sent(60)
+    stored = scans[3][1]
+    blocks = [block(scans[3][0] + 0.01 + k * 0.2, stored) for k in range(8)]
+    assert laser.shown_scans(blocks, scans, BEAMS, WINDOW) == [3]
+    verdict = laser.printed_in_time(blocks, scans, BEAMS, 8, WINDOW)
+    assert not verdict.passed
+    assert verdict.reason == (
+        "8 scans printed; block 2, printed 0.270 s after the first scan, shows no scan of the 0.100 s before it "
+        "later than block 1's (it printed %s; that scan, sent 0.210 s before it, was printed already by block 1)"
+        % ', '.join(values(stored)))
+
+
+def test_a_block_of_no_scan_sent_fails_with_what_it_printed():
+    scans = sent(5)
+    blocks = [block(0.05, scans[2][1]), (0.07, ['1.0', '2.0', '3.0', '4.0', '5.0'])]
+    verdict = laser.printed_in_time(blocks, scans, BEAMS, 2, WINDOW)
+    assert not verdict.passed
+    assert verdict.reason.endswith('block 2, printed 0.070 s after the first scan, shows no scan of the 0.100 s '
+                                   "before it later than block 1's (it printed 1.0, 2.0, 3.0, 4.0, 5.0; no scan "
+                                   'sent had those ranges)')
+
+
+def test_a_scan_printed_later_than_the_window_fails_with_its_age():
+    scans = sent(40)
+    blocks = [block(scans[5][0] + 0.5, scans[5][1])]
+    assert laser.shown_scans(blocks, scans, BEAMS, WINDOW) == []
+    assert laser.printed_in_time(blocks, scans, BEAMS, 1, WINDOW).reason.endswith(
+        'the scan with those ranges was sent 0.500 s before it)')
+
+
+def test_a_scan_printed_before_it_was_sent_is_no_scan_of_its_moment():
+    scans = sent(5)
+    blocks = [block(scans[4][0] - 0.01, scans[4][1])]
+    assert laser.shown_scans(blocks, scans, BEAMS, WINDOW) == []
+    assert laser.printed_in_time(blocks, scans, BEAMS, 1, WINDOW).reason.endswith(
+        'the scan with those ranges was sent 0.010 s after it)')
+
+
+def test_scans_printed_out_of_order_fail_at_the_older_one():
+    scans = sent(5)
+    blocks = [block(0.065, scans[3][1]), block(0.07, scans[2][1])]
+    assert laser.shown_scans(blocks, scans, BEAMS, WINDOW) == [3]
+    assert laser.printed_in_time(blocks, scans, BEAMS, 2, WINDOW).reason.endswith(
+        'the scan with those ranges, sent 0.030 s before it, came before the one block 1 printed)')
+
+
+def test_alike_scans_in_a_row_are_each_printed_once():
+    # A robot standing still without noise: every scan alike, each block takes the next one.
+    scans = [(i * PERIOD, scan(1.0)) for i in range(4)]
+    blocks = [block(t + 0.001, message) for t, message in scans]
+    assert laser.shown_scans(blocks, scans, BEAMS, WINDOW) == [0, 1, 2, 3]
+
+
+def test_values_rounded_to_3_decimals_show_the_scan_and_too_few_blocks_fail():
+    scans = sent(3)
+    rounded = ['%.3f' % value for value in laser.beam_ranges(scans[1][1], BEAMS)]
+    blocks = [(scans[1][0] + 0.001, rounded)]
+    assert laser.shown_scans(blocks, scans, BEAMS, WINDOW) == [1]
+    verdict = laser.printed_in_time(blocks, scans, BEAMS, 2, WINDOW)
+    assert not verdict.passed
+    assert verdict.reason.startswith('1 scans printed (2 needed)')
+
+
+def test_a_block_is_timed_by_its_last_line_and_a_cut_block_is_passed_over():
+    lines = printed(['1', '2', '3', '4', '5'], ['6', '7', '8', '9', '10'])   # roslaunch's line, 2 x 11, fake_tb3's
+    timed = [(float(i), line) for i, line in enumerate(lines)]
+    assert laser.timed_blocks(timed) == [(11.0, ['1', '2', '3', '4', '5']), (22.0, ['6', '7', '8', '9', '10'])]
+    assert laser.timed_blocks(timed[:20]) == [(11.0, ['1', '2', '3', '4', '5'])]

@@ -9,7 +9,7 @@ import time
 
 from course_grader import rubric as rubrics
 from course_grader.grader import Grader
-from course_grader.submission import package_name
+from course_grader.submission import package_name, terminal_text
 from course_testing.processes import exit_on_terminate
 
 COUNTS = ('This is your own check: the teacher\'s run, in a container, is the one that counts.')
@@ -63,11 +63,11 @@ def print_result(result, only=None):
         print('%s %-22s %g / %g  %s' % ('PASS' if criterion['passed'] else 'FAIL', criterion['id'],
                                         criterion['points'], criterion['max_points'], criterion['title']))
         if criterion['reason']:
-            print('    seen: %s' % criterion['reason'])
+            print('    seen: %s' % terminal_text(criterion['reason'], keep_lines=True))
         for hint in criterion['hints']:
-            print('    hint: %s' % hint)
+            print('    hint: %s' % terminal_text(hint, keep_lines=True))
     if result.get('error'):
-        print('check: %s' % result['error'])
+        print('check: %s' % terminal_text(result['error'], keep_lines=True))
 
 
 def main(argv=None):

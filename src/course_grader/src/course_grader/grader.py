@@ -15,8 +15,8 @@ import time
 import uuid
 from concurrent.futures import ThreadPoolExecutor
 
-from course_grader import feedback, gradescope, reports, results, rubric as rubrics
-from course_grader.submission import SubmissionError, ascii_name, find_package, student_of, unpack
+from course_grader import feedback, gradescope, reports, results, rubric as rubrics, wall_limit
+from course_grader.submission import SubmissionError, ascii_name, find_package, student_of, terminal_text, unpack
 from course_testing import processes
 from course_testing.process_table import stop_marked
 from course_testing.waiting import poll_until
@@ -154,9 +154,8 @@ class Grader:
         self.done = 0
         self.total = 0
         self.started = time.monotonic()
-        limits = rubric.limits
-        # Build, three runs and the simulators' start-ups: beyond this the sandbox is stopped.
-        self.wall_limit = limits['build_seconds'] + 4 * limits['run_seconds'] + 60
+        # The build and every run of the lab at their limits: beyond this the sandbox is stopped.
+        self.wall_limit = wall_limit.of_rubric(rubric)
 
     def grade_all(self, submissions):
         self.total = len(submissions)
@@ -184,8 +183,9 @@ class Grader:
             if not self.announce:
                 return result
             print('grade: [%d/%d] %s: %g / %g (%.0f s)%s%s' % (
-                self.done, self.total, who.name + (' (%s)' % who.id if who.id else ''), result['score'],
-                result['max_score'], result['seconds'], ': ' + result['error'] if result.get('error') else '',
+                self.done, self.total, terminal_text(who.name + (' (%s)' % who.id if who.id else '')),
+                result['score'], result['max_score'], result['seconds'],
+                ': ' + terminal_text(result['error']) if result.get('error') else '',
                 self._since_last(student, result)), flush=True)
         return result
 
@@ -349,7 +349,7 @@ def main(argv=None):
             raise GraderError('no Docker image given (--image, or run ./grade.sh which makes it)')
         previous = prepare_out(args.out)
     except (rubrics.RubricError, GraderError, OSError) as error:
-        print('grade: %s' % error, file=sys.stderr)
+        print('grade: %s' % terminal_text(error), file=sys.stderr)
         return 2
     print('grade: %d submissions of %s, %d at a time%s' % (
         len(args.submissions), args.lab, args.jobs, '' if args.no_container else ', each in a container of '
@@ -361,7 +361,8 @@ def main(argv=None):
     gone = sorted(set(previous) - {result['folder'] for result in class_results})
     if gone:
         print('grade: graded last time into %s, not this time: %s' % (args.out, ', '.join(
-            '%s (%g / %g)' % (previous[f]['student'], previous[f]['score'], previous[f]['max_score']) for f in gone)))
+            '%s (%g / %g)' % (terminal_text(previous[f]['student']), previous[f]['score'], previous[f]['max_score'])
+            for f in gone)))
     reports.write_all(class_results, rubric, grader.out, seconds, previous)
     print('grade: %d students graded in %.0f s (%.1f s per student): %s, %s, %s' % (
         len(class_results), seconds, seconds / len(class_results), os.path.join(args.out, 'grades.csv'),

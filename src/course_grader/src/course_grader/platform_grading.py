@@ -17,12 +17,12 @@ import tempfile
 import time
 import uuid
 
-from course_grader import classroom, feedback, gradescope, results, rubric as rubrics
+from course_grader import classroom, feedback, gradescope, results, rubric as rubrics, wall_limit
 from course_grader.check import print_result
-from course_grader.grader import SESSION, Grader, _limit_resources
-from course_grader.submission import (MAX_UNPACKED_BYTES, SubmissionError, check_folder, find_package, unpack,
-                                      upload_inside)
-from course_testing.process_table import stop_user
+from course_grader.grader import SESSION, _limit_resources
+from course_grader.submission import (MAX_UNPACKED_BYTES, SubmissionError, check_folder, find_package, terminal_text,
+                                      unpack, upload_inside)
+from course_testing.process_table import proc_fd, stop_user
 
 
 def is_empty(folder):
@@ -63,11 +63,6 @@ def stage(folder, rubric, staging):
     return find_package(staging, rubric.package)
 
 
-def wall_limit(rubric):
-    """./grade.sh's: beyond it the grading is stopped."""
-    return Grader(argparse.Namespace(out='.'), rubric).wall_limit
-
-
 def grade_folder(rubric, folder, student, work, student_user='student'):
     """The result (results.score's dict) of the submission in `folder`. `work` is the trusted
     side's own folder (its logs and the result; nothing of the student's side can write there)."""
@@ -86,11 +81,14 @@ def grade_folder(rubric, folder, student, work, student_user='student'):
                       os.path.join(submission, package), '--out', out, '--scratch', scratch, '--student', student]
     env = dict(os.environ, HOME=out, ROS_HOME=os.path.join(out, 'ros'))
     log = os.path.join(out, 'grader.txt')
-    limit = wall_limit(rubric)
+    limit = wall_limit.of_rubric(rubric)
     reason = None
+    # The descriptor of /proc handed down where there is none (Gradescope's chroot), so that the
+    # session can stop the student's processes between its steps (course_testing.process_table).
+    handed_down = () if proc_fd() is None else (proc_fd(),)
     with open(log, 'wb') as stream:
         process = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=stream, stderr=subprocess.STDOUT, env=env,
-                                   start_new_session=True, preexec_fn=_limit_resources)
+                                   start_new_session=True, preexec_fn=_limit_resources, pass_fds=handed_down)
         try:
             code = process.wait(limit)
             if code != 0:
@@ -111,6 +109,25 @@ def grade_folder(rubric, folder, student, work, student_user='student'):
     return result
 
 
+def deliver_gradescope(result, folder, fd, work):
+    """Gradescope's results.json of `result`: its text on the descriptor `fd` when given
+    (run_autograder opens it outside the chroot the grading runs in, on a file nothing inside can
+    reach), else into `folder`, renamed over whatever is there: a link planted at that name (by an
+    unpacking, which runs as root) is replaced, never written through."""
+    if fd is None:
+        os.makedirs(folder, exist_ok=True)
+        private = tempfile.mkdtemp(prefix='.results-', dir=folder)   # the same disk: the rename is atomic
+        gradescope.write(result, private)
+        os.replace(os.path.join(private, gradescope.RESULTS_FILE), os.path.join(folder, gradescope.RESULTS_FILE))
+        os.rmdir(private)
+        return
+    private = tempfile.mkdtemp(prefix='results-', dir=work)
+    gradescope.write(result, private)
+    with open(os.path.join(private, gradescope.RESULTS_FILE), 'rb') as source, os.fdopen(fd, 'wb') as target:
+        shutil.copyfileobj(source, target)
+    shutil.rmtree(private)
+
+
 def report(result, stream, runner_log=False):
     """Each criterion, its points, reason and hints, then the total (as `check` prints them). In a
     runner's log, between ::stop-commands:: and its token, so that nothing a reason quotes of the
@@ -119,12 +136,12 @@ def report(result, stream, runner_log=False):
     with contextlib.redirect_stdout(stream):
         if runner_log:
             print('::stop-commands::%s' % token)
-        print('%s: %s' % (result['lab'], result['student']))
+        print('%s: %s' % (result['lab'], terminal_text(result['student'])))
         error = result.get('error')
         if not (error and all(c['reason'] == error for c in result['criteria'])):   # else nothing was graded
             print_result(dict(result, error=None))
         if error:
-            print('not fully graded: %s' % error)
+            print('not fully graded: %s' % terminal_text(error, keep_lines=True))
         print('total %g / %g (%.0f s)' % (result['score'], result['max_score'], result['seconds'] or 0))
         if runner_log:
             print('::%s::' % token)
@@ -136,11 +153,13 @@ def main(argv=None):
         prog='rosrun course_grader grade_platform', description='Grades the submission in FOLDER for a '
         'platform, as the trusted side of the course\'s image (run as root): classroom prints the outputs '
         'of the workflow\'s grading step on standard output (the report on standard error); gradescope '
-        'writes RESULTS/results.json (the report on standard output).')
+        'writes RESULTS/results.json, or its text on the descriptor FD (the report on standard output).')
     parser.add_argument('platform', choices=('classroom', 'gradescope'))
     parser.add_argument('lab', help='the lab: %s' % ', '.join(rubrics.labs()))
     parser.add_argument('folder', help='the submission (the repository, or what the student uploaded)')
     parser.add_argument('--results', default='/autograder/results', help='gradescope: where results.json goes')
+    parser.add_argument('--results-fd', type=int, metavar='FD',
+                        help='gradescope: write results.json\'s text on this open descriptor instead of RESULTS')
     parser.add_argument('--student', default='submission', help='the name in the report')
     parser.add_argument('--work', help='the trusted side\'s folder (default: a new one in the temporary folder)')
     args = parser.parse_args(sys.argv[1:] if argv is None else argv)
@@ -164,7 +183,6 @@ def main(argv=None):
         result_stream.write(classroom.output_lines(result))
         result_stream.close()
     else:
-        os.makedirs(args.results, exist_ok=True)
-        gradescope.write(result, args.results)
+        deliver_gradescope(result, args.results, args.results_fd, work)
         report(result, sys.stdout)
     return 0

@@ -18,17 +18,32 @@ def folder_of(result):
     return result.get('folder') or result['student']
 
 
+# What starts a formula in a spreadsheet (OWASP, CSV injection): a Moodle folder named
+# `=HYPERLINK(...)_4712_assignsubmission_file_` would give a cell that runs.
+FORMULA_STARTS = ('=', '+', '-', '@', '\t', '\r')
+
+
+def _csv_cell(value):
+    """A grades.csv cell: a number as a number (-1.5 too), any text inert: one that a spreadsheet
+    would take for a formula gets a leading quote, which shows it as the text it is."""
+    if isinstance(value, (int, float)):
+        return _points(value)
+    text = str(value)
+    return "'" + text if text.startswith(FORMULA_STARTS) else text
+
+
 def write_csv(results, rubric, path):
     """One row per student: the name as the platform wrote it, its id there (the column a grade
     book matches rows by), the score and each criterion's points."""
     with open(path, 'w', newline='', encoding='utf-8') as stream:
         writer = csv.writer(stream)
-        writer.writerow(['student', 'id', 'lab', 'score', 'max_score'] + [c.id for c in rubric.criteria])
+        writer.writerow([_csv_cell(name) for name in ['student', 'id', 'lab', 'score', 'max_score']
+                         + [c.id for c in rubric.criteria]])
         for result in sorted(results, key=lambda r: r['student']):
             points = {c['id']: c['points'] for c in result['criteria']}
-            writer.writerow([result['student'], result.get('student_id', ''), result['lab'], _points(result['score']),
-                             _points(result['max_score'])]
-                            + [_points(points.get(c.id, 0)) for c in rubric.criteria])
+            cells = [result['student'], result.get('student_id', ''), result['lab'], result['score'],
+                     result['max_score']] + [points.get(c.id, 0) for c in rubric.criteria]
+            writer.writerow([_csv_cell(cell) for cell in cells])
 
 
 def _failure_text(criterion):

@@ -18,6 +18,7 @@ import time
 import uuid
 from concurrent.futures import ThreadPoolExecutor
 
+from course_common import sim_record
 from course_checks.launch import Launch
 from course_grader import feedback, labs, results, rubric as rubrics
 from course_testing.process_table import stop_user
@@ -62,6 +63,8 @@ class Session:
         self.rubric = rubric
         self.package_dir = package_dir
         self.out_dir = out_dir
+        # A folder in the output folder: the result carries the files at its top only (send_folder).
+        self.records_dir = os.path.join(out_dir, 'records')
         self.student_side = student_side
         self.only = only   # a criterion id: the runs that judge other criteria are left out
         self.pictures = []
@@ -83,9 +86,20 @@ class Session:
         """One of the student's programs (a script, a roslaunch of the student's package)."""
         return self.student_side.start(argv, self.log_path(log_name))
 
-    def trusted(self, argv, log_name):
-        """A program of the course (a simulator), with the course's environment only."""
-        return Launch(argv, self.log_path(log_name))
+    def trusted(self, argv, log_name, record=None):
+        """A program of the course (a simulator), with the course's environment only; with
+        `record`, the simulator records what it does into that file (course_common.sim_record)."""
+        env = dict(os.environ, **{sim_record.ENVIRONMENT: record}) if record else None
+        return Launch(argv, self.log_path(log_name), env=env)
+
+    def record_path(self, name):
+        """A new file for a simulator's record, in the trusted side's own folder (the student's
+        side can neither read nor write it) but not in the result."""
+        os.makedirs(self.records_dir, mode=0o700, exist_ok=True)
+        path = os.path.join(self.records_dir, '%s.record' % name)
+        if os.path.lexists(path):   # of a simulator prepared before for the same run, which never ran
+            os.remove(path)
+        return path
 
     def picture(self, name):
         """Where a simulator of the trusted side saves the picture `name`."""

@@ -1,17 +1,37 @@
 """A student's submission: a folder, a .zip or a .tar.gz, unpacked safely and searched for the lab's
-package. Nothing here runs the student's code."""
+package. Nothing here runs the student's code.
+
+An archive makes regular files (mode 0o644, 0o755 when the archive gives any execute bit) and
+folders (0o755) inside the destination, and nothing else. Each member is written one path component
+at a time: every folder is opened without following a link, every file is created new
+(O_NOFOLLOW | O_EXCL), so nothing is ever written through a link, whatever order the archive has.
+Every other member is skipped, not created, and named in `skipped`: symbolic and hard links (in a
+.tar.gz, or marked so in a .zip; a catkin workspace's src/CMakeLists.txt links to Debian's
+toplevel.cmake, which the grader's own workspace provides), devices, FIFOs and sockets.
+The whole archive is refused (SubmissionError), before anything is written, for a name that is
+absolute or holds `..`, a file named twice, a name that is both a file and a folder (`a`, then
+`a/b`), more than MAX_MEMBERS members or more than MAX_UNPACKED_BYTES; and, while writing, for a
+member bigger than it says or an archive that cannot be read. Names are Unicode NFC, as student_of's,
+and '\\' separates folders as '/' does (Windows tools write it so).
+A plain folder is refused when it holds a FIFO, a socket, a device or a link that leads outside it."""
 import collections
+import lzma
 import os
 import re
 import stat
 import tarfile
 import unicodedata
 import zipfile
+import zlib
 
 # An archive bigger than this when unpacked, or with more members, is refused (an archive bomb).
 MAX_UNPACKED_BYTES = 200 * 1024 * 1024
 MAX_MEMBERS = 5000
 ARCHIVE_SUFFIXES = ('.tar.gz', '.tgz', '.zip')
+# What reading a damaged or unusual archive raises (a bad CRC, a truncated stream, an encrypted or
+# unknown compression method in a .zip): each becomes the student's reason.
+UNREADABLE = (tarfile.TarError, zipfile.BadZipFile, zlib.error, lzma.LZMAError, EOFError, NotImplementedError,
+              RuntimeError, ValueError, OSError)
 
 
 class SubmissionError(Exception):
@@ -20,9 +40,9 @@ class SubmissionError(Exception):
 
 # The names a learning platform's "download all" gives a student's upload (docs/grading.md):
 # Moodle, a folder `Full Name_ID_assignsubmission_file_`; Canvas, a file
-# `lastnamefirstname[_late]_ID_SUBMISSION_uploaded-name`.
-MOODLE_FOLDER = re.compile(r'^(?P<name>.+?)_(?P<id>\d+)_assignsubmission_[a-z]+_?$')
-CANVAS_FILE = re.compile(r'^(?P<name>[^_]+)_(?:late_)?(?P<id>\d+)_\d+_.+$', re.I)
+# `lastnamefirstname[_late]_ID_SUBMISSION_uploaded-name`. A name may hold any character, a line break too.
+MOODLE_FOLDER = re.compile(r'^(?P<name>.+?)_(?P<id>\d+)_assignsubmission_[a-z]+_?$', re.S)
+CANVAS_FILE = re.compile(r'^(?P<name>[^_]+)_(?:late_)?(?P<id>\d+)_\d+_.+$', re.I | re.S)
 
 Student = collections.namedtuple('Student', 'name id folder')
 Student.__doc__ = ('Who handed a submission in: the name as the platform wrote it, the platform\'s id '
@@ -41,6 +61,16 @@ def ascii_name(text):
     return re.sub(r'[^A-Za-z0-9._-]', '_', folded).strip('._-') or 'student'
 
 
+def terminal_text(text, keep_lines=False):
+    """text (a student's name, a reason quoting what a student's code printed) as a terminal must
+    show it: line breaks, escape sequences, other control and format characters (bidirectional
+    overrides) written as Python writes them in a string ('\\n', '\\x1b', '\\u202e'); one line, or
+    with keep_lines its own lines, each made so."""
+    if keep_lines:
+        return '\n'.join(terminal_text(line) for line in str(text).split('\n'))
+    return ''.join(c if c.isprintable() else repr(c)[1:-1] for c in str(text))
+
+
 def student_of(path):
     """The Student of a submission, from its folder's or file's name."""
     base = unicodedata.normalize('NFC', os.path.basename(os.path.normpath(path)))
@@ -56,130 +86,202 @@ def student_of(path):
     return Student(base, '', safe_name(base))
 
 
-def _safe_member_path(destination, name):
-    """Where an archive member would land, or a SubmissionError if that is outside destination."""
-    if name.startswith('/') or '\\' in name:
+# An archive member to make: its path components, 'file' or 'folder', its size, whether the archive
+# gives it an execute bit, and what the archive's reader needs to read it.
+Member = collections.namedtuple('Member', 'parts kind size executable source')
+
+
+def _member_parts(name):
+    """The path components of a member's name (NFC; '/' or '\\' between them), or a SubmissionError
+    when the name is absolute or climbs with '..'."""
+    if name.startswith(('/', '\\')):
         raise SubmissionError('the archive holds %r, an absolute path: refused' % name)
-    target = os.path.normpath(os.path.join(destination, name))
-    if target != destination and not target.startswith(destination + os.sep):
+    parts = tuple(part for part in re.split(r'[/\\]', unicodedata.normalize('NFC', name)) if part not in ('', '.'))
+    if '..' in parts:
         raise SubmissionError('the archive holds %r, which points outside its folder: refused' % name)
-    return target
+    return parts
 
 
-def _check_link(destination, member_path, link_target):
-    if os.path.isabs(link_target):
-        raise SubmissionError('the archive holds a link %r to %r, outside its folder: refused'
-                              % (os.path.relpath(member_path, destination), link_target))
-    _safe_member_path(destination, os.path.relpath(
-        os.path.join(os.path.dirname(member_path), link_target), destination))
-
-
-def _extract_tar(archive, destination):
-    try:
-        tar = tarfile.open(archive, 'r:*')
-    except (tarfile.TarError, OSError) as error:
-        raise SubmissionError('%s is not a readable .tar.gz archive (%s)' % (os.path.basename(archive), error))
-    with tar:
-        members, total = [], 0
-        for member in tar:
-            members.append(member)
-            if len(members) > MAX_MEMBERS:
-                raise SubmissionError('the archive has more than %d files: refused' % MAX_MEMBERS)
-            target = _safe_member_path(destination, member.name)
-            if member.issym() or member.islnk():
-                _check_link(destination, target, member.linkname if member.issym()
-                            else os.path.relpath(os.path.join(destination, member.linkname),
-                                                 os.path.dirname(target)))
-            elif not (member.isfile() or member.isdir()):
-                raise SubmissionError('the archive holds %r, a device or pipe: refused' % member.name)
-            total += max(member.size, 0)
+def _plan(entries, skipped):
+    """The Members to make, checked all together before anything is written. entries: (name, kind,
+    size, executable, source), kind 'file', 'folder' or what else the member is (a sentence)."""
+    made, kinds, total = [], {}, 0
+    for count, (name, kind, size, executable, source) in enumerate(entries, 1):
+        if count > MAX_MEMBERS:
+            raise SubmissionError('the archive has more than %d files: refused' % MAX_MEMBERS)
+        parts = _member_parts(name)
+        if kind not in ('file', 'folder'):
+            skipped.append('%s (%s)' % (name, kind))
+            continue
+        if not parts:   # the archive's own top folder ('./')
+            if kind == 'file':
+                raise SubmissionError('the archive holds a file without a name (%r): refused' % name)
+            continue
+        if kind == 'file' and kinds.get(parts) == 'file':
+            raise SubmissionError('the archive holds %r twice: refused' % '/'.join(parts))
+        for depth in range(1, len(parts) + 1):
+            wanted = kind if depth == len(parts) else 'folder'
+            if kinds.setdefault(parts[:depth], wanted) != wanted:
+                raise SubmissionError('the archive holds %r both as a file and as a folder: refused'
+                                      % '/'.join(parts[:depth]))
+        made.append(Member(parts, kind, max(size, 0), executable, source))
+        if kind == 'file':
+            total += max(size, 0)
             if total > MAX_UNPACKED_BYTES:
                 raise SubmissionError('the archive unpacks to more than %d MB: refused'
                                       % (MAX_UNPACKED_BYTES // 2 ** 20))
-        for member in members:
-            target = _safe_member_path(destination, member.name)
-            if member.isdir():
-                os.makedirs(target, exist_ok=True)
-            elif member.issym():
-                os.makedirs(os.path.dirname(target), exist_ok=True)
-                os.symlink(member.linkname, target)
-            elif member.isfile():
-                os.makedirs(os.path.dirname(target), exist_ok=True)
-                _copy_limited(tar.extractfile(member), target, member.size)
-                os.chmod(target, 0o755 if member.mode & 0o111 else 0o644)
-            # hard links: checked above, not made (none of a course package needs one)
+    return made
 
 
-def _copy_limited(source, target, size):
-    written = 0
-    with open(target, 'wb') as out:
-        while True:
-            chunk = source.read(1 << 16)
-            if not chunk:
-                break
-            written += len(chunk)
-            if written > size or written > MAX_UNPACKED_BYTES:
-                raise SubmissionError('an archive member is bigger than it says: refused')
-            out.write(chunk)
+def _what_is(mode):
+    """In words, what a file of this st_mode is when it is neither a regular file nor a folder."""
+    return {stat.S_IFLNK: 'a link', stat.S_IFIFO: 'a FIFO (named pipe)', stat.S_IFSOCK: 'a socket',
+            stat.S_IFCHR: 'a device', stat.S_IFBLK: 'a device'}.get(stat.S_IFMT(mode), 'neither a file nor a folder')
 
 
-def _extract_zip(archive, destination):
+def _open_folder(root, parts):
+    """A descriptor of the folder root/parts: each component made a real folder (0o755) when it is
+    missing, and opened without following it if it is anything but a folder."""
+    folder = os.dup(root)
     try:
-        zipped = zipfile.ZipFile(archive)
-    except (zipfile.BadZipFile, OSError) as error:
-        raise SubmissionError('%s is not a readable .zip archive (%s)' % (os.path.basename(archive), error))
+        for part in parts:
+            try:
+                os.mkdir(part, 0o755, dir_fd=folder)
+            except FileExistsError:
+                pass
+            child = os.open(part, os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW | os.O_CLOEXEC, dir_fd=folder)
+            os.close(folder)
+            folder = child
+            os.fchmod(folder, 0o755)   # whatever the umask
+    except BaseException:
+        os.close(folder)
+        raise
+    return folder
+
+
+def _write(root, members, open_member):
+    """Makes each Member under the folder descriptor root; open_member(source) reads its content."""
+    for member in members:
+        folder = _open_folder(root, member.parts if member.kind == 'folder' else member.parts[:-1])
+        try:
+            if member.kind == 'file':
+                mode = 0o755 if member.executable else 0o644
+                fd = os.open(member.parts[-1], os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC,
+                             mode, dir_fd=folder)
+                with os.fdopen(fd, 'wb') as out, open_member(member.source) as source:
+                    os.fchmod(fd, mode)
+                    _copy_limited(source, out, member.size)
+        finally:
+            os.close(folder)
+
+
+def _copy_limited(source, out, size):
+    written = 0
+    while True:
+        chunk = source.read(1 << 16)
+        if not chunk:
+            break
+        written += len(chunk)
+        if written > size:
+            raise SubmissionError('an archive member is bigger than it says: refused')
+        out.write(chunk)
+
+
+def _tar_kind(member):
+    """'file', 'folder', or what else a tar member is."""
+    if member.isfile():
+        return 'file'
+    if member.isdir():
+        return 'folder'
+    if member.issym():
+        return 'a link to %r' % member.linkname
+    if member.islnk():
+        return 'a hard link to %r' % member.linkname
+    if member.ischr() or member.isblk():
+        return 'a device'
+    return 'a FIFO (named pipe)' if member.isfifo() else 'neither a file nor a folder'
+
+
+def _extract_tar(stream, name, root, skipped):
+    try:
+        tar = tarfile.open(fileobj=stream, mode='r:*')
+    except UNREADABLE as error:
+        raise SubmissionError('%s is not a readable .tar.gz archive (%s)' % (name, error))
+    with tar:
+        members = _plan(((member.name, _tar_kind(member), member.size, member.mode & 0o111, member)
+                         for member in tar), skipped)
+        _write(root, members, tar.extractfile)
+
+
+def _zip_kind(info):
+    """'file', 'folder', or what else the unix mode of a zip entry says it is (a link, a device)."""
+    mode = info.external_attr >> 16
+    if stat.S_IFMT(mode) not in (0, stat.S_IFREG, stat.S_IFDIR):
+        return _what_is(mode)
+    return 'folder' if info.filename.endswith('/') else 'file'   # is_dir() fails on an empty name
+
+
+def _extract_zip(stream, name, root, skipped):
+    try:
+        zipped = zipfile.ZipFile(stream)
+    except UNREADABLE as error:
+        raise SubmissionError('%s is not a readable .zip archive (%s)' % (name, error))
     with zipped:
-        infos = zipped.infolist()
-        if len(infos) > MAX_MEMBERS:
-            raise SubmissionError('the archive has more than %d files: refused' % MAX_MEMBERS)
-        if sum(info.file_size for info in infos) > MAX_UNPACKED_BYTES:
-            raise SubmissionError('the archive unpacks to more than %d MB: refused'
-                                  % (MAX_UNPACKED_BYTES // 2 ** 20))
-        for info in infos:
-            target = _safe_member_path(destination, info.filename)
-            mode = info.external_attr >> 16
-            if stat.S_ISLNK(mode):
-                raise SubmissionError('the archive holds a link %r: refused (zip links are not needed)'
-                                      % info.filename)
-            if info.is_dir():
-                os.makedirs(target, exist_ok=True)
-                continue
-            os.makedirs(os.path.dirname(target), exist_ok=True)
-            with zipped.open(info) as source:
-                _copy_limited(source, target, info.file_size)
-            os.chmod(target, 0o755 if mode & 0o111 else 0o644)
+        members = _plan(((info.filename, _zip_kind(info), info.file_size, (info.external_attr >> 16) & 0o111, info)
+                         for info in zipped.infolist()), skipped)
+        _write(root, members, zipped.open)
+
+
+def _open_regular(path):
+    """path opened for reading, when it is a regular file (opening a FIFO named alice.zip would block)."""
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
+    except OSError as error:
+        raise SubmissionError('%s cannot be read (%s)' % (os.path.basename(path), error.strerror))
+    mode = os.fstat(fd).st_mode
+    if not stat.S_ISREG(mode):
+        os.close(fd)
+        raise SubmissionError('%s is %s, not an archive: refused' % (os.path.basename(path), _what_is(mode)))
+    return os.fdopen(fd, 'rb')
 
 
 def check_folder(folder):
-    """Refuse a submission folder with links that point outside it (in an archive or not)."""
+    """Refuse a submission folder holding a FIFO, a socket or a device (reading one would block the
+    grader, or worse) or a link that leads outside it."""
     folder = os.path.realpath(folder)
     for parent, dirs, files in os.walk(folder):
         for name in dirs + files:
             path = os.path.join(parent, name)
-            if os.path.islink(path):
+            mode = os.lstat(path).st_mode
+            if stat.S_ISLNK(mode):
                 target = os.path.realpath(path)
                 if target != folder and not target.startswith(folder + os.sep):
                     raise SubmissionError('%s is a link to %s, outside the submission: refused'
                                           % (os.path.relpath(path, folder), os.readlink(path)))
+            elif not (stat.S_ISDIR(mode) or stat.S_ISREG(mode)):
+                raise SubmissionError('%s is %s, not a file: refused' % (os.path.relpath(path, folder), _what_is(mode)))
 
 
 def upload_inside(folder):
     """The one archive a platform's folder holds (Moodle keeps a student's upload so), or None when
-    the folder itself is the submission (it has a package.xml, or no archive at its top)."""
+    the folder itself is the submission (it has a package.xml, or no archive at its top). A link is
+    never taken for the archive."""
     for parent, dirs, files in os.walk(folder):
         if 'package.xml' in files:
             return None
     archives = sorted(name for name in os.listdir(folder) if name.endswith(ARCHIVE_SUFFIXES)
-                      and not name.startswith('.') and os.path.isfile(os.path.join(folder, name)))
+                      and not name.startswith('.') and stat.S_ISREG(os.lstat(os.path.join(folder, name)).st_mode))
     if len(archives) > 1:
         raise SubmissionError('the folder holds %d archives and no package.xml (%s): hand in one'
                               % (len(archives), ', '.join(archives)))
     return os.path.join(folder, archives[0]) if archives else None
 
 
-def unpack(path, destination):
+def unpack(path, destination, skipped=None):
     """The submission's folder: `path` itself if it is a folder, or the one archive it holds, or
-    the archive `path` unpacked into destination (which must exist and be empty)."""
+    the archive `path` unpacked into destination (which must exist and be empty). The list skipped,
+    when given, gets the members not made (links, devices: the module's docstring), as sentences."""
+    skipped = [] if skipped is None else skipped
     if os.path.isdir(path):
         check_folder(path)
         inside = upload_inside(path)
@@ -188,23 +290,36 @@ def unpack(path, destination):
         path = inside
     if not os.path.exists(path):
         raise SubmissionError('%s does not exist' % path)
-    destination = os.path.realpath(destination)
+    name = os.path.basename(path)
     if path.endswith('.zip'):
-        _extract_zip(path, destination)
+        extract = _extract_zip
     elif path.endswith(('.tar.gz', '.tgz')):
-        _extract_tar(path, destination)
+        extract = _extract_tar
     else:
-        raise SubmissionError('%s is neither a folder nor a .zip or .tar.gz archive' % os.path.basename(path))
-    check_folder(destination)
+        raise SubmissionError('%s is neither a folder nor a .zip or .tar.gz archive' % name)
+    destination = os.path.realpath(destination)
+    root = os.open(destination, os.O_RDONLY | os.O_DIRECTORY | os.O_CLOEXEC)
+    try:
+        with _open_regular(path) as stream:
+            extract(stream, name, root, skipped)
+    except UNREADABLE as error:
+        raise SubmissionError('%s cannot be unpacked (%s): refused' % (name, error))
+    finally:
+        os.close(root)
     return destination
 
 
 def package_name(package_xml):
+    """The <name> of a package.xml, or None: also when it is not a regular file (a FIFO would block
+    the reader) or is a link (which may lead out of the submission)."""
     try:
-        with open(package_xml, errors='replace') as stream:
-            text = stream.read(200000)
+        fd = os.open(package_xml, os.O_RDONLY | os.O_NONBLOCK | os.O_NOFOLLOW | os.O_CLOEXEC)
     except OSError:
         return None
+    with os.fdopen(fd, 'rb') as stream:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            return None
+        text = stream.read(200000).decode('utf-8', errors='replace')
     match = re.search(r'<name>\s*([^<\s]+)\s*</name>', text)
     return match.group(1) if match else None
 

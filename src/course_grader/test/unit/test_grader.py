@@ -7,7 +7,7 @@ import subprocess
 
 import pytest
 
-from course_grader import grader
+from course_grader import grader, rubric as rubrics
 
 
 def test_out_folder_new_then_replaced_and_a_foreign_one_refused(tmp_path):
@@ -69,7 +69,7 @@ def test_only_regular_files_of_the_trusted_sides_tar_stream_are_unpacked(tmp_pat
 def test_the_steps_a_session_reports_reach_on_step_and_the_whole_output_its_log(tmp_path):
     steps = []
     args = type('Args', (), {'out': str(tmp_path / 'out')})()
-    rubric = type('Rubric', (), {'limits': {'build_seconds': 1, 'run_seconds': 1}})()
+    rubric = rubrics.load('my_turtle')
     session_output = io.BytesIO(b'grade_submission: built in 4.1 s\nroscore started\n'
                                 b'grade_submission: move_turtle.launch checked in 9.5 s\n')
     log = io.BytesIO()

@@ -1,5 +1,6 @@
 """What the platforms hand in, before anything runs: each bad input one sentence (no ROS run)."""
 import io
+import json
 import os
 import shutil
 import zipfile
@@ -78,11 +79,6 @@ def test_a_link_out_of_the_submission_is_refused(tmp_path):
         staged(tmp_path / 'repo', tmp_path)
 
 
-def test_the_wall_limit_is_grade_shs():
-    limits = RUBRIC.limits
-    assert platform_grading.wall_limit(RUBRIC) == limits['build_seconds'] + 4 * limits['run_seconds'] + 60
-
-
 def test_the_runner_log_cannot_carry_a_workflow_command():
     result = results.failed(RUBRIC, 'mallory', 'x\n::set-output name=builds::forged')
     stream = io.StringIO()
@@ -91,3 +87,25 @@ def test_the_runner_log_cannot_carry_a_workflow_command():
     token = lines[0].split('::stop-commands::')[1]
     assert len(token) == 32 and lines[-1] == '::%s::' % token
     assert '::set-output name=builds::forged' in stream.getvalue()   # shown, between the two
+
+
+def test_gradescopes_results_replace_a_link_planted_at_their_name_and_never_write_through_it(tmp_path):
+    results_folder, elsewhere = tmp_path / 'results', tmp_path / 'forged.json'
+    results_folder.mkdir()
+    elsewhere.write_text('{"score": 14}')
+    os.symlink('../forged.json', str(results_folder / 'results.json'))
+    result = results.failed(RUBRIC, 'mallory', 'the node crashed')
+    platform_grading.deliver_gradescope(result, str(results_folder), None, str(tmp_path))
+    written = results_folder / 'results.json'
+    assert not written.is_symlink() and json.loads(written.read_text())['score'] == 0
+    assert elsewhere.read_text() == '{"score": 14}'
+    assert os.listdir(str(results_folder)) == ['results.json']
+
+
+def test_gradescopes_results_go_on_the_descriptor_given_and_nowhere_else(tmp_path):
+    read_end, write_end = os.pipe()
+    result = results.failed(RUBRIC, 'alice', 'the node crashed')
+    platform_grading.deliver_gradescope(result, str(tmp_path / 'results'), write_end, str(tmp_path))
+    with os.fdopen(read_end) as stream:
+        assert json.load(stream)['tests'][0]['output'] == 'the node crashed'
+    assert os.listdir(str(tmp_path)) == []

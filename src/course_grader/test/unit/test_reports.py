@@ -80,6 +80,26 @@ def test_a_platforms_student_keeps_name_and_id_in_every_report(tmp_path):
     assert '<h2 id="José_Núñez_4711">José Núñez: 10 / 14</h2>' in page
 
 
+def test_csv_cells_a_spreadsheet_would_run_are_text_and_numbers_stay_numbers(tmp_path):
+    hyperlink = alice()
+    hyperlink.update(student='=HYPERLINK("http://x","Alice")', student_id='4712', folder='HYPERLINK_x_Alice_4712')
+    others = [dict(alice(), student=name, student_id=platform_id, folder='s%d' % index)
+              for index, (name, platform_id) in enumerate([('+cmd', '@1'), ('-2+3', ''), ('\tTab', '\r9'),
+                                                            ('Ann\nLee', '12')])]
+    others[0]['criteria'][0]['points'] = -1.5   # numbers, negative ones too, are not text
+    others[1]['score'] = -2
+    reports.write_csv([hyperlink] + others, RUBRIC, str(tmp_path / 'grades.csv'))
+    with open(str(tmp_path / 'grades.csv'), encoding='utf-8', newline='') as stream:
+        rows = list(csv.reader(stream))
+    assert rows[0][:5] == ['student', 'id', 'lab', 'score', 'max_score']
+    assert [row[:4] for row in rows[1:]] == [
+        ["'\tTab", "'\r9", 'move_turtlebot3', '10'], ["'+cmd", "'@1", 'move_turtlebot3', '10'],
+        ["'-2+3", '', 'move_turtlebot3', '-2'],
+        ['\'=HYPERLINK("http://x","Alice")', '4712', 'move_turtlebot3', '10'],
+        ['Ann\nLee', '12', 'move_turtlebot3', '10']]
+    assert rows[2][5] == '-1.5'
+
+
 def test_grading_again_says_what_changed_per_student(tmp_path):
     earlier = alice()
     earlier['folder'] = 'alice'

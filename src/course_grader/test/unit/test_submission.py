@@ -49,6 +49,10 @@ def test_a_moodle_folder_keeps_the_name_as_moodle_wrote_it_and_its_id(tmp_path):
     assert submission.ascii_name('José_Núñez_4711') == 'Jose_Nunez_4711'
 
 
+def test_a_platforms_name_may_hold_a_line_break():
+    assert submission.student_of('/d/Ann\nLee_12_assignsubmission_file_') == ('Ann\nLee', '12', 'Ann_Lee_12')
+
+
 def test_a_canvas_file_gives_the_name_and_the_user_id():
     assert submission.student_of('/d/nunezjose_4711_998877_catkin_ws.zip') == ('nunezjose', '4711', 'nunezjose_4711')
     assert submission.student_of('/d/smithanna_late_4712_998878_upload.tar.gz') == ('smithanna', '4712', 'smithanna_4712')
@@ -107,19 +111,88 @@ def test_tar_unpacks_with_execute_bits_and_the_package_is_found(tmp_path):
 
 
 @pytest.mark.parametrize('members, message', [
-    ([('../evil.py', b'x')], 'points outside its folder'),
-    ([('/etc/evil', b'x')], 'absolute path'),
-    ([('a/link', ('link', '/etc/passwd'))], 'link .* outside its folder'),
-    ([('a/link', ('link', '../../etc'))], 'outside its folder'),
-    ([('a/hard', ('hard', '../../etc/passwd'))], 'outside its folder'),
+    ([('../evil.py', b'x')], r"^the archive holds '../evil.py', which points outside its folder: refused$"),
+    ([('ok/../../evil.py', b'x')], 'points outside its folder'),
+    ([('/etc/evil', b'x')], r"^the archive holds '/etc/evil', an absolute path: refused$"),
+    ([('a', b'x'), ('a/b', b'y')], r"^the archive holds 'a' both as a file and as a folder: refused$"),
+    ([('a/b', b'x'), ('a', b'y')], "holds 'a' both as a file and as a folder"),
+    ([('a/b', b'x'), ('a/b', b'y')], r"^the archive holds 'a/b' twice: refused$"),
+    ([('caf\u00e9', b'x'), ('cafe\u0301', b'y')], "holds 'caf\u00e9' twice"),   # NFC and NFD: one name
 ])
-def test_tar_path_traversal_and_links_out_are_refused(tmp_path, members, message):
-    archive = tar_with(tmp_path / 'mallory.tar.gz', members)
+def test_tar_path_traversal_and_clashing_names_are_refused_before_anything_is_written(tmp_path, members, message):
+    archive = tar_with(tmp_path / 'mallory.tar.gz', [('first.txt', b'x')] + members)
     out = tmp_path / 'out'
     out.mkdir()
     with pytest.raises(SubmissionError, match=message):
         submission.unpack(archive, str(out))
+    assert os.listdir(str(out)) == []
     assert not (tmp_path / 'evil.py').exists()
+
+
+def test_links_are_skipped_not_made_and_named(tmp_path):
+    # A catkin workspace's src/CMakeLists.txt is an absolute link: the rest of it is graded.
+    archive = tar_with(tmp_path / 'ws.tar.gz', [
+        ('ws/src/CMakeLists.txt', ('link', '/usr/share/catkin/cmake/toplevel.cmake')),
+        ('ws/src/out', ('link', '../../..')),
+        ('ws/src/hard', ('hard', '../../etc/passwd')),
+        ('ws/src/move_turtlebot3/package.xml', PACKAGE_XML.encode())])
+    out = tmp_path / 'out'
+    out.mkdir()
+    skipped = []
+    folder = submission.unpack(archive, str(out), skipped)
+    assert submission.find_package(folder, 'move_turtlebot3') == 'ws/src/move_turtlebot3'
+    assert sorted(os.listdir(os.path.join(folder, 'ws', 'src'))) == ['move_turtlebot3']
+    assert skipped == ["ws/src/CMakeLists.txt (a link to '/usr/share/catkin/cmake/toplevel.cmake')",
+                       "ws/src/out (a link to '../../..')", "ws/src/hard (a hard link to '../../etc/passwd')"]
+
+
+def test_nothing_is_written_through_a_chain_of_links(tmp_path):
+    # l1 -> ., l1/l2 -> .., l2/l3 -> .. once wrote l2/l3/marker.txt beside the unpacking folder.
+    archive = tar_with(tmp_path / 'chain.tar.gz', [
+        ('l1', ('link', '.')), ('l1/l2', ('link', '..')), ('l2/l3', ('link', '..')), ('l2/l3/marker.txt', b'x')])
+    out = tmp_path / 'out'
+    out.mkdir()
+    submission.unpack(archive, str(out))
+    assert sorted(str(path.relative_to(tmp_path)) for path in tmp_path.rglob('marker.txt')) == \
+        ['out/l2/l3/marker.txt']
+    assert not any(path.is_symlink() for path in out.rglob('*'))
+
+
+def test_a_zip_entry_marked_as_a_link_is_skipped(tmp_path):
+    archive = str(tmp_path / 'links.zip')
+    with zipfile.ZipFile(archive, 'w') as zipped:
+        link = zipfile.ZipInfo('passwd')
+        link.external_attr = (0o120777) << 16
+        zipped.writestr(link, '/etc/passwd')
+        zipped.writestr('notes.txt', 'mine')
+    out = tmp_path / 'out'
+    out.mkdir()
+    skipped = []
+    submission.unpack(archive, str(out), skipped)
+    assert os.listdir(str(out)) == ['notes.txt']
+    assert skipped == ['passwd (a link)']
+
+
+def test_a_fifo_or_a_link_to_one_in_a_folder_is_refused_and_never_opened(tmp_path):
+    folder = tmp_path / 'Ann Lee_12_assignsubmission_file_'
+    folder.mkdir()
+    os.mkfifo(str(folder / 'package.xml'))
+    assert submission.package_name(str(folder / 'package.xml')) is None   # answers at once
+    with pytest.raises(SubmissionError, match=r'^package.xml is a FIFO \(named pipe\), not a file: refused$'):
+        submission.unpack(str(folder), str(tmp_path))
+    os.remove(str(folder / 'package.xml'))
+    os.mkfifo(str(tmp_path / 'alice.zip'))
+    os.symlink(str(tmp_path / 'alice.zip'), str(folder / 'alice.zip'))   # a link is never the upload
+    assert submission.upload_inside(str(folder)) is None
+    with pytest.raises(SubmissionError, match=r'^alice.zip is a FIFO \(named pipe\), not an archive: refused$'):
+        submission.unpack(str(tmp_path / 'alice.zip'), str(tmp_path))
+
+
+def test_names_for_the_terminal_are_one_line_with_escapes_shown():
+    assert submission.terminal_text('José Núñez') == 'José Núñez'
+    assert submission.terminal_text('Ann\nLee\x1b[2J\u202etxt.exe\r') == 'Ann\\nLee\\x1b[2J\\u202etxt.exe\\r'
+    assert submission.terminal_text('Traceback:\n  \x1b]0;title\x07', keep_lines=True) == \
+        'Traceback:\n  \\x1b]0;title\\x07'
 
 
 def test_zip_traversal_bomb_and_garbage_are_refused(tmp_path, monkeypatch):

@@ -6,6 +6,7 @@ import math
 import os
 
 import rospy
+from geometry_msgs.msg import Twist, Vector3
 
 from course_checks import driving, laser, service_calls
 from course_checks.robot import SIMULATOR, RobotWatch, largest_move, node_names, travelled
@@ -23,7 +24,7 @@ CRITERIA = {
     'trajectory_rate': ('script', 'world', 'x_pos', 'y_pos', 'noise_stddev', 'real_time_factor', 'linear',
                         'angular', 'speed_tolerance', 'rate_hz', 'rate_tolerance'),
     'trajectory_circle': ('radius_tolerance', 'periods', 'min_travel'),
-    'laser_data': SIMULATION + ('beams', 'blocks'),
+    'laser_data': SIMULATION + ('beams', 'blocks', 'turn_speed', 'print_window'),
     'avoid_stops': SIMULATION + ('lock_step', 'min_drive', 'stopped_seconds', 'front_min', 'front_max'),
     'avoid_stays': ('stay_seconds', 'max_creep'),
 }
@@ -43,12 +44,15 @@ class PreparedSimulator:
     def __init__(self, session, log_name):
         self.log_name = log_name
         self.fifo = session.log_path('.%s.go' % log_name)
+        # What fake_tb3 did, as it tells it: the evidence of the run (course_common.sim_record).
+        self.record = session.record_path(log_name)
         os.mkfifo(self.fifo, 0o600)
         # Started as fake_tb3_node would be, with the parameters world.launch would set (roslaunch's
         # own start and stop cost about a second each per run).
         try:
             self.launch = session.trusted(['/usr/bin/python3', '-c', PREPARED_FAKE_TB3, self.fifo,
-                                           '__name:=' + SIMULATOR.lstrip('/')], log_name)
+                                           '__name:=' + SIMULATOR.lstrip('/')], log_name,
+                                          record=self.record)
         except OSError:   # no process left in the sandbox (a fork bomb of the run before)
             self.discard_fifo()
             raise
@@ -131,8 +135,9 @@ class Run:
         self.sim_ended = False
         prepared = simulators.take()
         self.sim_log = prepared.log_name
+        self.record = prepared.record
         self.deadline = Deadline(session.rubric.limits['run_seconds'])
-        self.watch = RobotWatch()
+        self.watch = RobotWatch(record=self.record)
         if picture:
             sim_args['picture_png'] = session.picture(picture)
         # fake_tb3 is the course's: it runs on the trusted side, with the course's environment, and
@@ -156,9 +161,10 @@ class Run:
         return Verdict(False, 'expected %s; seen: %s' % (expected, hints[0] if hints else 'nothing'), hints[1:])
 
     def judged(self, outcomes):
-        """The outcomes, unless what they were judged on was not the simulator's own doing: then
-        they fail, naming who sent what (a node of the submission on odom, scan or clock, a node
-        that called fake_tb3's service, or a simulator that a node shut down)."""
+        """The outcomes, judged on fake_tb3's own record, unless the run was not the simulator's
+        own doing: then they fail, naming who did what (a node of the submission that published on
+        odom, scan or clock, a node that called fake_tb3's service, or a simulator that a node shut
+        down)."""
         impostors = self.watch.impostors()
         if impostors:
             return faked(outcomes, impostors, SIMULATOR)
@@ -183,10 +189,12 @@ class Run:
         # The node and the simulator stop together; fake_tb3 writes its picture before it leaves the
         # ROS graph, and what is left of either then is its exit (not waited for).
         together(self.node.stop, functools.partial(self.sim.stop, 15, lambda: SIMULATOR not in node_names()))
-        # Then everything fake_tb3 sent is heard: at 10x the scans a node printed last may have
+        # Then everything fake_tb3 recorded is read: at 10x the scans a node printed last may have
         # been sent just before the stop.
         self.watch.drain(DRAIN_SECONDS)
         self.watch.close()
+        if os.path.exists(self.record):   # read: it would only fill the trusted side's disk
+            os.remove(self.record)
 
 
 def check_trajectory(session, simulators):
@@ -238,24 +246,29 @@ def check_laser_data(session, simulators):
     run = Run(session, simulators, criterion['script'], world=criterion['world'], x_pos=criterion['x_pos'],
               y_pos=criterion['y_pos'], noise_stddev=criterion['noise_stddev'],
               noise_seed=criterion['noise_seed'], real_time_factor=criterion['real_time_factor'])
+    # The grader turns the robot in place, from a moment its own timing sets: no two scans in a row
+    # are alike, nor the scans of two gradings, so only a node that reads each scan prints it.
+    turn = rospy.Publisher('/cmd_vel', Twist, queue_size=1, latch=True)
     try:
-        expected = ('%s prints, for every scan, ========== and the labels s1 [0] ... s5 [359] each '
+        turn.publish(Twist(angular=Vector3(z=criterion['turn_speed'])))
+        expected = ('%s prints, for every scan as it comes, ========== and the labels s1 [0] ... s5 [359] each '
                     'followed by the range of that beam (%s)' % (run.node.name, ', '.join(map(str, beams))))
         run.deadline.wait(lambda: len(laser.printed_blocks(laser.normalized(run.node.lines))) >= needed,
                           gave_up=run.node.ended)
-        blocks = laser.printed_blocks(laser.normalized(run.node.lines))
+        blocks = laser.timed_blocks(run.node.launch.timed_lines() if run.node.launch else [])
         run.stop()
-        scans = run.watch.copy('scans')   # every scan fake_tb3 sent, up to its stop
+        scans = run.watch.scan_entries()   # (time sent, scan) of every scan fake_tb3 sent, up to its stop
         hints = run.node.explain()
         if not blocks:
             if not hints:
                 hints = ['%d lines printed, none in the form of the slide (first: %r)' % (
                     len(run.node.lines), run.node.lines[0] if run.node.lines else '')]
             return run.judged({'laser_data': Verdict(False, 'expected %s; seen: %s' % (expected, hints[0]), hints[1:])})
-        printed = laser.printed_scans(blocks, scans, beams, needed)
+        printed = laser.printed_in_time(blocks, scans, beams, needed, criterion['print_window'])
         return run.judged({'laser_data': Verdict(printed.passed, 'expected %s; seen %s' % (expected, printed.reason),
                                                  hints)})
     finally:
+        turn.unregister()   # latched: the next run's fake_tb3 must not hear it
         run.stop()
 
 

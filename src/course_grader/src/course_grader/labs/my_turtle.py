@@ -9,10 +9,10 @@ import rospy
 from geometry_msgs.msg import Twist
 
 from course_checks import turtle
-from course_checks.robot import node_names, senders
+from course_checks.robot import node_names
 from course_checks.verdict import Verdict
 from course_checks.waiting import Deadline, wait_for
-from course_grader.labs.common import faked, run_each
+from course_grader.labs.common import run_each
 from course_grader.labs.turtlesim_runs import TurtlesimLaunch
 
 PRINTED_POSE = re.compile(r'x: (-?\d+\.\d+), y: (-?\d+\.\d+)')
@@ -57,7 +57,7 @@ def check_turtle(session):
             if not wait_for(lambda: '/my_turtle_node' in node_names(), rubric.limits['start_seconds']):
                 reason = 'not checked: the node %s did not start' % launch_c['executable']
                 return launch.judged(dict(outcomes, teleop=Verdict(False, reason), prints_pose=Verdict(False, reason)))
-        watch = turtle.turtle_poses('turtle1')
+        watch = launch.poses('turtle1')
         teleop = rospy.Publisher('/cmd_vel_mux/input/teleop', Twist, queue_size=1)
         wait_for(lambda: teleop.get_num_connections() > 0, 10)
         command = Twist()
@@ -93,14 +93,9 @@ def check_turtle(session):
         shown = printed()
         outcomes['prints_pose'] = Verdict(shown.passed, 'expected lines `x: %.2f, y: %.2f` (the pose turtlesim '
                                           'publishes, printed on every pose); seen %s' % (final.x, final.y, shown.reason))
-        impostors = {topic: nodes for topic, nodes in
-                     (('turtle1/pose', sorted(senders(watch) - set(launch.simulators))),) if nodes}
-        if impostors:
-            outcomes.update(faked(['teleop', 'prints_pose'], impostors, SIMULATOR))
-        else:
-            unused_calls = [turtle.no_unused_calls(name) for name in sorted(launch.simulators)]
-            outcomes['teleop'] = (next(filter(None, unused_calls), None) or turtle.no_jumps(watch, 'turtle1')
-                                  or outcomes['teleop'])
+        # A node that published on turtle1/pose fails both (launch.judged).
+        outcomes['teleop'] = (turtle.no_unused_calls(launch.service_calls()) or turtle.no_jumps(watch, 'turtle1')
+                              or outcomes['teleop'])
         judged = launch.judged({criterion_id: outcomes[criterion_id] for criterion_id in ('teleop', 'prints_pose')})
         return dict(outcomes, **judged)
     finally:

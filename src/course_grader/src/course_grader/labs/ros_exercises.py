@@ -11,11 +11,10 @@ from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Int32
 
 from course_checks import figures, rates, turtle
-from course_checks.robot import senders
 from course_checks.verdict import Verdict
 from course_checks.waiting import Deadline
 from course_common.timing import Pacer
-from course_grader.labs.common import faked, run_each
+from course_grader.labs.common import run_each
 from course_grader.labs.turtlesim_runs import SimulatedClock, TurtlesimLaunch, describe_launches
 
 NUMBER = r'(-?\d+\.\d+)'
@@ -65,15 +64,10 @@ class Exercise(TurtlesimLaunch):
                          lock_step=lock_step)
 
     def on_interface(self, recorder, name):
-        """A failing verdict when the turtle's poses came from another node than the course's
-        turtlesim, when a node called a teleport or /reset, or the turtle moved where no velocity
-        took it; None when the simulator alone moved it."""
-        others = sorted(senders(recorder) - set(self.simulators))
-        if others:
-            owner = ', '.join(sorted(self.simulators)) or 'turtlesim'
-            return faked(['x'], {'%s/pose' % name: others}, owner)['x']
-        unused_calls = [turtle.no_unused_calls(simulator) for simulator in sorted(self.simulators)]
-        return next(filter(None, unused_calls), None) or turtle.no_jumps(recorder, name, self.real_time_factor)
+        """A failing verdict when a node called a teleport or /reset, or the turtle moved where no
+        velocity took it (as turtlesim recorded it); None when the simulator alone moved it. (A node
+        that published on the pose topic fails the run's criteria: TurtlesimLaunch.judged.)"""
+        return turtle.no_unused_calls(self.service_calls()) or turtle.no_jumps(recorder, name, self.real_time_factor)
 
     def wait(self, condition, seconds=None):
         """condition() within `seconds` (the run's time left at most); False as soon as the launch ended."""
@@ -192,8 +186,8 @@ def check_publisher_subscriber(session):
 
 def check_listener(session):
     criterion = session.rubric.criterion('listener_prints_pose')
-    poses = turtle.turtle_poses('turtle1')
     exercise = Exercise(session, criterion, 'exercise2.log')
+    poses = exercise.poses('turtle1')
     line = r'x: %s, y: %s, theta: %s' % (NUMBER, NUMBER, NUMBER)
     teleop = rospy.Publisher('/turtle1/cmd_vel', Twist, queue_size=1)
     clock = None
@@ -224,15 +218,14 @@ def check_listener(session):
             clock.shutdown()
         teleop.unregister()
         exercise.finish()
-        poses.close()
 
 
 def check_circle(session):
     criterion = session.rubric.criterion('circle')
-    poses = turtle.turtle_poses('turtle1')
     # The node answers each pose it prints (Fig. 5 publishes in the pose callback): turtlesim waits for
     # that answer (lock step), so a machine that keeps the node waiting makes it skip no pose.
     exercise = Exercise(session, criterion, 'exercise3.log', picture='circle.png', lock_step=True)
+    poses = exercise.poses('turtle1')
     radius = criterion['radius']
     try:
         if not exercise.wait(lambda: poses.count() and poses.latest().linear_velocity > 0,
@@ -258,25 +251,20 @@ def check_circle(session):
         return exercise.judged({'circle': exercise.on_interface(poses, 'turtle1') or verdict})
     finally:
         exercise.finish()
-        poses.close()
-
-
-def _turtles():
-    return {topic.split('/')[1] for topic, _ in rospy.get_published_topics() if topic.endswith('/pose')}
 
 
 def check_spawn_kill(session):
     criterion = session.rubric.criterion('spawn_kill')
     spawn = tuple(criterion['spawn'])
-    poses = turtle.turtle_poses('robotics')
     # turtlesim's window at the end is the picture; its lines are the grader's (the trusted side's).
     exercise = Exercise(session, criterion, 'exercise4.log', picture='spawn_kill.png')
+    poses = exercise.poses('robotics')
     try:
         if not exercise.wait(lambda: poses.count(), session.rubric.limits['start_seconds']):
             spawned = Verdict(False, exercise.nothing('spawn the turtle robotics'))
         else:
             at_start = turtle.at_pose(poses.latest(), spawn, criterion['tolerance'])
-            gone = exercise.wait(lambda: 'turtle1' not in _turtles(), 5)
+            gone = exercise.wait(lambda: exercise.turtles() is not None and 'turtle1' not in exercise.turtles(), 5)
             spawned = Verdict(at_start.passed and gone, 'expected robotics at (%.2f, %.2f, %.2f) and turtle1 killed; '
                               'seen robotics %s, turtle1 %s' % (spawn + (at_start.reason, 'killed' if gone else
                                                                          'still there')))
@@ -289,7 +277,6 @@ def check_spawn_kill(session):
                                     '(std_srvs/Empty)'))})
     finally:
         exercise.finish()
-        poses.close()
 
 
 def check_shape(session, shape):
@@ -297,11 +284,11 @@ def check_shape(session, shape):
     side, tolerance = criterion['side'], criterion['tolerance']
     start = tuple(criterion['spawn'])
     outline = figures.polygon(*start, side, {'square': 4, 'triangle': 3}[shape])
-    poses = turtle.turtle_poses('robotics')
     # The closed loop ends each side and turn from the pose: turtlesim waits for its answer to each
     # pose (lock step), so a machine that keeps the student's node waiting does not move the turtle on.
     exercise = Exercise(session, criterion, 'exercise5_%s.log' % shape, *_args(session, shape),
                         picture='%s.png' % shape, lock_step=True)
+    poses = exercise.poses('robotics')
     try:
         finished = exercise.wait(lambda: exercise.printed(r'(Finished) the %s' % shape))
         path = turtle.pose_array(poses)
@@ -314,7 +301,6 @@ def check_shape(session, shape):
         return exercise.judged({shape: exercise.on_interface(poses, 'robotics') or verdict})
     finally:
         exercise.finish()
-        poses.close()
 
 
 def run_checks(session):

@@ -15,8 +15,12 @@ import roslib.packages
 import rospy
 from rosgraph_msgs.msg import Clock
 
+from turtlesim.msg import Pose
+
+from course_checks.recorded import PublisherLook, RecordedTopic, Records
 from course_checks.verdict import Verdict
 from course_checks.waiting import wait_for
+from course_grader.labs.common import faked
 from course_grader.turtlesim_launch import PREFIX
 
 MAX_TURTLESIMS = 3           # turtlesim nodes of one launch file started for it, at most
@@ -109,6 +113,10 @@ class TurtlesimLaunch:
         self.unread = None if isinstance(declared, list) else declared
         self.sim_log = os.path.splitext(log_name)[0] + '_turtlesim.txt'
         self.simulators = {}     # full name: (its Launch, its XML-RPC URI once it registered)
+        # What the turtlesims did, as they recorded it (the evidence of the run), and the nodes the
+        # master lists as publishers of the turtles' pose topics beside them.
+        self.records = Records()
+        self.publishers = PublisherLook()
         self.run = None
         self.stopped = False
         self.trouble = None
@@ -138,11 +146,13 @@ class TurtlesimLaunch:
             rospy.set_param(name + '/lock_step', lock_step)
         namespace, base = rosgraph.names.namespace(name), name.rsplit('/', 1)[-1]
         executable = roslib.packages.find_node('turtlesim', 'turtlesim_node')[0]   # the course's (our environment)
+        log = self.sim_log if not self.simulators else '%s_%d.txt' % (self.sim_log[:-4], len(self.simulators))
+        record = self.session.record_path(log[:-4])
         launch = self.session.trusted([executable, '__name:=' + base, '__ns:=' + namespace]
-                                      + ['%s:=%s' % pair for pair in node['remaps']],
-                                      self.sim_log if not self.simulators else '%s_%d.txt' % (
-                                          self.sim_log[:-4], len(self.simulators)))
+                                      + ['%s:=%s' % pair for pair in node['remaps']], log, record=record)
         self.simulators[name] = (launch, None)
+        self.records.add(record)
+        self.publishers.owners.add(name)
         if wait:
             self.wait_for_turtlesim(name)
 
@@ -161,6 +171,30 @@ class TurtlesimLaunch:
                 return None
         wait_for(serving, self.session.rubric.limits['start_seconds'], gave_up=launch.ended)
         self.simulators[name] = (launch, serving())
+
+    def poses(self, turtle):
+        """The turtle's poses as the run's turtlesim recorded them (pose topic /TURTLE/pose); a node
+        that publishes on that topic is named (impostors)."""
+        topic = '/%s/pose' % turtle
+        self.publishers.topics.add(topic)
+        return RecordedTopic(self.records, topic, Pose)
+
+    def impostors(self):
+        """{pose topic: nodes} of the nodes other than the turtlesims that the master listed as
+        publishers of a turtle's pose topic watched (poses())."""
+        return {topic: sorted(nodes) for topic, nodes in sorted(self.publishers.look(0).items())}
+
+    def service_calls(self):
+        """[(service, caller as the caller says)] of the turtlesims' services, as they noted them."""
+        first = {}
+        for call in self.records.events('service_call'):
+            first.setdefault(call['service'], call['caller'])
+        return list(first.items())
+
+    def turtles(self):
+        """The turtles of the turtlesim(s) now, as they recorded them (None before they told)."""
+        told = self.records.events('turtles')
+        return set(told[-1]['names']) if told else None
 
     @property
     def simulator_lines(self):
@@ -195,11 +229,17 @@ class TurtlesimLaunch:
             thread.start()
         for thread in threads:
             thread.join()
+        self.publishers.look(0)
+        self.publishers.close()
 
     def judged(self, outcomes):
-        """The outcomes of the run, unless a turtlesim the grader started stopped or was replaced
-        during it: then each fails, saying so. Stops the run."""
+        """The outcomes of the run, judged on what the turtlesims recorded, unless a turtlesim the
+        grader started stopped or was replaced during it, or a node published on a turtle's pose
+        topic beside them: then each fails, saying so. Stops the run."""
         self.finish()
         if self.trouble:
             return {criterion_id: Verdict(False, self.trouble) for criterion_id in outcomes}
+        impostors = self.impostors()
+        if impostors:
+            return faked(outcomes, impostors, ', '.join(sorted(self.simulators)) or 'turtlesim')
         return outcomes
