@@ -6,6 +6,7 @@ import subprocess
 import pytest
 
 from course_testing import process_table
+from course_testing.waiting import wait_until
 
 
 @pytest.fixture
@@ -33,7 +34,10 @@ def test_a_descriptor_of_proc_handed_down_finds_and_stops_the_users_processes(no
     try:
         monkeypatch.setenv(process_table.PROC_FD_VARIABLE, str(handed_down))
         assert sleeper.pid in process_table.user_processes(os.getuid())
-        assert process_table.command_line(sleeper.pid) == '%d sleep 600' % sleeper.pid
+        # Waited for: Popen may return before the new program's command line is in place (empty
+        # for a moment, on a busy machine).
+        wait_until(lambda: process_table.command_line(sleeper.pid) == '%d sleep 600' % sleeper.pid, 10,
+                   'the command line of sleep read through the descriptor')
         # stop_user would stop this process too (the same user): its finding is the same.
         assert process_table.stop_processes(lambda: [sleeper.pid]) == 1
         assert sleeper.wait(10) == -9
