@@ -17,6 +17,7 @@ from course_common.sim_record import ENVIRONMENT, RecordWriter, peer_uid
 # keys, so that a sender cannot put one there).
 SENDER_KEY = '__course_sender'
 UNKNOWN = {'nodes': [], 'uid': None, 'label': 'an unknown sender'}
+MAX_LOOKUPS = 50   # of the master's node names for one connection
 
 
 def install(topics=rospy.topics):
@@ -55,15 +56,18 @@ class Senders:
 
     @staticmethod
     def node_names(connection):
-        """The nodes the master has registered at the connection's endpoint, sorted."""
+        """The nodes the master has registered as publishers of the connection's topic at the
+        connection's endpoint, sorted (MAX_LOOKUPS of them looked up at most: a node that registers
+        thousands of names must not keep the receiving thread)."""
         endpoint = getattr(connection, 'endpoint_id', None)
+        topic = getattr(getattr(connection, 'protocol', None), 'resolved_name', None)
         master = rosgraph.Master(rospy.get_name())
         try:
-            publishers, subscribers, services = master.getSystemState()
+            publishers = master.getSystemState()[0]
         except OSError:   # the master does not answer
             return []
-        names = {node for _, nodes in publishers + subscribers + services for node in nodes}
-        return sorted(name for name in names if _uri_of(master, name) == endpoint)
+        names = sorted({node for name, nodes in publishers if name == topic for node in nodes})
+        return [name for name in names[:MAX_LOOKUPS] if _uri_of(master, name) == endpoint]
 
     @staticmethod
     def uid(connection):
