@@ -310,12 +310,13 @@ def test_beside_an_alone_job_more_jobs_share_its_core_only_while_their_last_cpu_
     assert share('tour') == 0.25 and share('listener') is None and share('unknown') is None
     machine = FakeMachine()
     side_by_side = jobs.SideBySide('auto', 2, sample=machine.sample, clock=lambda: machine.now)
-    waiting = [('builds', {0}, False, ''), ('teleop', {0}, False, ''), ('listener', {0}, False, '')]
-    alone = (None, 'rates', {0}, True, None, 0.0, 'mark', None)
-    tour = (None, 'tour', {0}, False, None, 0.0, 'mark', 1)
+    waiting = [jobs.Job('builds', {0}, False, ''), jobs.Job('teleop', {0}, False, ''),
+               jobs.Job('listener', {0}, False, '')]
+    alone = jobs.Running(None, 'rates', {0}, True, None, 0.0, 'mark', None)
+    tour = jobs.Running(None, 'tour', {0}, False, None, 0.0, 'mark', 1)
     # 0.25 + 0.15 fits in 0.6; the builds (0.89) do not, the listener's share is unknown.
     assert jobs.next_job(waiting, [alone, tour], side_by_side, 1, share) == (1, 1)
-    teleop = (None, 'teleop', {0}, False, None, 0.0, 'mark', 1)
+    teleop = jobs.Running(None, 'teleop', {0}, False, None, 0.0, 'mark', 1)
     assert jobs.next_job(waiting[:1] + waiting[2:], [alone, tour, teleop], side_by_side, 1, share) == (None, None)
     # Without the shares (a first run with seconds only): one job beside, as before.
     assert jobs.next_job(waiting, [alone, tour], side_by_side, 1) == (None, None)
@@ -323,7 +324,7 @@ def test_beside_an_alone_job_more_jobs_share_its_core_only_while_their_last_cpu_
     # The first beside it: the longest that mostly waited (the builds compute: two cores later).
     assert jobs.next_job(waiting, [alone], side_by_side, 1, share) == (1, 1)
     # A job of unknown share held beside: nothing joins it.
-    unknown = (None, 'listener', {0}, False, None, 0.0, 'mark', 1)
+    unknown = jobs.Running(None, 'listener', {0}, False, None, 0.0, 'mark', 1)
     assert jobs.next_job(waiting[:2], [alone, unknown], side_by_side, 1, share) == (None, None)
     # The next run reads the CPU seconds this run writes.
     lines = 'tour\t0\tshared\tsleep 0.2\nrates\t0\talone\tsleep 0.1\n'
@@ -353,3 +354,17 @@ def test_jobs_get_ctrl_c_back_when_the_test_command_runs_in_the_background(tmp_p
     assert result.returncode == 0, result.stdout
     assert {signal.SIGINT, signal.SIGQUIT} <= ignored_signals(runner.read_text())  # as it was started
     assert not {signal.SIGINT, signal.SIGQUIT} & ignored_signals(job.read_text())
+
+
+def test_a_step_named_to_run_alone_that_is_no_step_fails_a_whole_run(workspace):
+    """tools/test-alone-steps.txt: a step renamed or moved would run beside the others unseen."""
+    write(str(workspace / 'tools/test-alone-steps.txt'),
+          '# a comment\npytest tests\n\nrostest gone/test/renamed.test\n')
+    code, output = run_test_command(workspace)
+    assert code == 1, output
+    assert "FAILED: tools/test-alone-steps.txt names 'rostest gone/test/renamed.test', which is no step of this run" \
+        in output
+    assert 'pytest tests' not in [line.split("'")[1] for line in output.splitlines() if 'names \'' in line]
+    # A run of some packages has fewer steps: nothing to say then.
+    code, output = run_test_command(workspace, 'alpha')
+    assert (code, last_line(output)) == (0, '2 passed, 0 failed'), output

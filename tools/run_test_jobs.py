@@ -30,6 +30,7 @@ environment carries a mark of its own, and what still carries it a few seconds a
 killed.
 """
 import argparse
+import collections
 import os
 import re
 import subprocess
@@ -47,6 +48,14 @@ WHY = re.compile(r'RESULT: FAIL|\[FAILURE\]|\[ERROR\] \[Testcase|^FAILED |^ERROR
                  r'timed out after|AssertionError|^E  ')
 
 
+# A step of the list: its label, the exit codes after which its result file tells the rest, whether
+# it runs alone (it measures wall-clock rates), its shell command.
+Job = collections.namedtuple('Job', 'label codes alone command')
+# A step that runs: its Popen, the Job's fields, its log file, its time.monotonic() start, the mark
+# in its environment, the core it is held to (None: any).
+Running = collections.namedtuple('Running', 'process label codes alone log start mark core')
+
+
 def read_jobs(stream):
     jobs = []
     for number, line in enumerate(stream, 1):
@@ -57,7 +66,7 @@ def read_jobs(stream):
             raise SystemExit('run_test_jobs: line %d is not label<TAB>codes<TAB>alone|shared<TAB>command'
                              % number)
         label, codes, sharing, command = fields
-        jobs.append((label, {int(code) for code in codes.split(',')}, sharing == 'alone', command))
+        jobs.append(Job(label, {int(code) for code in codes.split(',')}, sharing == 'alone', command))
     return jobs
 
 
@@ -123,34 +132,33 @@ class SideBySide:
 
 
 def next_job(waiting, running, side_by_side, beside_core, share=lambda label: None):
-    """(index in `waiting` of the job to start now, the core it is held to or None), or (None, None)
-    when none may start yet. `running`: the running jobs' entries, whose [1] is the label, [3] says
-    alone and [-1] the core a job is held to. Alone jobs come first in `waiting`; each starts when no
+    """(index in `waiting` (Jobs) of the job to start now, the core it is held to or None), or (None,
+    None) when none may start yet. `running`: the Running jobs. Alone jobs come first in `waiting`; each starts when no
     other alone job runs and nothing runs but jobs held to beside_core; beside an alone job (running
     or next), one other job may run, held to beside_core (the first that used at most BESIDE_SHARE of
     a core in its last run, if any did), and more of them while the shares of one core they used in
     their last run (`share(label)`, None if unknown) sum to at most BESIDE_SHARE."""
     running = list(running)
-    alone_phase = waiting[0][2] or any(entry[3] for entry in running)
+    alone_phase = waiting[0].alone or any(entry.alone for entry in running)
     if not alone_phase:
         return (0, None) if side_by_side.room(len(running)) else (None, None)
-    if waiting[0][2] and not any(entry[3] for entry in running):
-        if all(entry[-1] is not None for entry in running):
+    if waiting[0].alone and not any(entry.alone for entry in running):
+        if all(entry.core is not None for entry in running):
             return 0, None  # nothing beside it but jobs held to the other core
         return None, None  # the others (not held to a core) end first
-    shared = [index for index, job in enumerate(waiting) if not job[2]]
-    held = [entry for entry in running if not entry[3]]
-    if beside_core is None or not shared or any(entry[-1] is None for entry in held):
+    shared = [index for index, job in enumerate(waiting) if not job.alone]
+    held = [entry for entry in running if not entry.alone]
+    if beside_core is None or not shared or any(entry.core is None for entry in held):
         return None, None
     if not held:
         # The longest that mostly waits, if one is known to: one that computes gets two cores later.
-        waits = [index for index in shared if (share(waiting[index][0]) or 1.0) <= BESIDE_SHARE]
+        waits = [index for index in shared if (share(waiting[index].label) or 1.0) <= BESIDE_SHARE]
         return (waits or shared)[0], beside_core
-    used = [share(entry[1]) for entry in held]
+    used = [share(entry.label) for entry in held]
     if None in used:
         return None, None
     for index in shared:
-        more = share(waiting[index][0])
+        more = share(waiting[index].label)
         if more is not None and sum(used) + more <= BESIDE_SHARE:
             return index, beside_core
     return None, None
@@ -200,7 +208,7 @@ def main():
     known.update(read_times(options.times))
     # Those that need the machine alone first; then the longest first, so that the last minutes
     # are not one long job alone (unknown ones first of all).
-    jobs.sort(key=lambda job: (not job[2], -known.get(job[0], (float('inf'),))[0]))
+    jobs.sort(key=lambda job: (not job.alone, -known.get(job.label, (float('inf'),))[0]))
     os.makedirs(options.logs, exist_ok=True)
     side_by_side = SideBySide(options.jobs, os.cpu_count() or 1)
     usable = sorted(os.sched_getaffinity(0))
@@ -213,16 +221,17 @@ def main():
                                    share=lambda label: cpu_share(known, label))
             if index is None:
                 break
-            label, codes, alone, command = waiting.pop(index)
-            log = open(log_name(options.logs, label), 'w')
+            job = waiting.pop(index)
+            log = open(log_name(options.logs, job.label), 'w')
             mark = new_mark('COURSE_TEST_STEP')
             # SIGINT and SIGQUIT as in a terminal: when test.sh runs in the background (`./test.sh &`,
             # a CI runner), every program inherits both ignored, and the tests' roscore and roslaunch
             # would ignore the SIGINT that stops them (tests/network/ took 181 s instead of 90).
-            process = subprocess.Popen(['bash', '-c', command], stdout=log, stderr=subprocess.STDOUT,
+            process = subprocess.Popen(['bash', '-c', job.command], stdout=log, stderr=subprocess.STDOUT,
                                        stdin=subprocess.DEVNULL, env=with_mark(mark),
                                        preexec_fn=lambda core=core: start_job(core))
-            running[process.pid] = (process, label, codes, alone, log, time.monotonic(), mark, core)
+            running[process.pid] = Running(process, job.label, job.codes, job.alone, log, time.monotonic(),
+                                           mark, core)
             side_by_side.started()
             widest = max(widest, len(running))
         # With jobs waiting for an idle core, look again every half second.
@@ -232,13 +241,15 @@ def main():
             continue
         if pid not in running:
             continue
-        process, label, codes, _, log, start, mark, _ = running.pop(pid)
-        if not (waiting and waiting[0][2]) and not any(entry[3] for entry in running.values()):
+        ended = running.pop(pid)
+        process, label, codes, log, start, mark = (ended.process, ended.label, ended.codes, ended.log,
+                                                   ended.start, ended.mark)
+        if not (waiting and waiting[0].alone) and not any(entry.alone for entry in running.values()):
             # The alone jobs are over: the job held to one core beside them gets every core again.
             for key, entry in running.items():
-                if entry[-1] is not None:
-                    release(entry[6], usable)
-                    running[key] = entry[:-1] + (None,)
+                if entry.core is not None:
+                    release(entry.mark, usable)
+                    running[key] = entry._replace(core=None)
         log.close()
         code = os.waitstatus_to_exitcode(status) if hasattr(os, 'waitstatus_to_exitcode') else status >> 8
         process.returncode = code

@@ -1,6 +1,7 @@
 """/clock for nodes on simulated time that make their own clock or need none."""
 import rospy
 import rospy.impl.simtime
+import rospy.rostime
 
 
 def stop_hearing_clock():
@@ -14,3 +15,9 @@ def stop_hearing_clock():
     subscriber.unregister()
     rospy.impl.simtime._clock_sub = None
     return True
+
+
+def set_own_time(stamp):
+    """This node's rospy time, for a node that makes the clock itself and does not hear /clock
+    (stop_hearing_clock): rospy has no public call for it, so the one use of its private one is here."""
+    rospy.rostime._set_rostime(stamp)

@@ -20,7 +20,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 from course_common import sim_record
 from course_checks.launch import Launch
-from course_grader import feedback, labs, results, rubric as rubrics
+from course_grader import feedback, labs, results, rubric as rubrics, wall_limit
 from course_testing.process_table import stop_user
 from course_testing.processes import together
 from course_testing.waiting import poll_until
@@ -143,7 +143,8 @@ def build(session, scratch):
             raise BuildFailed('catkin_make did not finish within %d s' % seconds)
         raise BuildFailed(feedback.first_compiler_error(text) or 'catkin_make failed (exit %d): see build.log' % code)
     session.package_dir = package
-    listing = side.run(['bash', '-c', 'source "$1/devel/setup.bash" && env -0', 'env', workspace], 60)
+    listing = side.run(['bash', '-c', 'source "$1/devel/setup.bash" && env -0', 'env', workspace],
+                       wall_limit.STEP_SECONDS)
     return dict(item.split('=', 1) for item in listing.decode(errors='replace').split('\0') if '=' in item)
 
 

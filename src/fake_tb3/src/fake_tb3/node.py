@@ -29,7 +29,6 @@ import types
 import rosgraph.names
 import rospkg
 import rospy.core
-import rospy.rostime
 import rospy
 from geometry_msgs.msg import TransformStamped, Twist
 from nav_msgs.msg import Odometry
@@ -42,7 +41,7 @@ from tf2_msgs.msg import TFMessage
 from course_common import batched_writes, sim_record_ros
 from course_common.lock_step import LockStep
 from course_common.request_queue import RequestQueue
-from course_common.sim_clock import stop_hearing_clock
+from course_common.sim_clock import set_own_time, stop_hearing_clock
 from course_common.service_calls_ros import ServiceCallTopic
 from course_common.timing import Pacer, Periodic
 
@@ -413,7 +412,7 @@ class FakeTb3Node:
             # Simulated time starts at 0, as Gazebo's; real time stamps are the wall clock.
             if self.use_sim_time:
                 stamp = rospy.Time(0, next_ns)
-                rospy.rostime._set_rostime(stamp)  # this node's own rospy time: it does not hear its own /clock
+                set_own_time(stamp)  # this node's own rospy time: it does not hear its own /clock
             else:
                 stamp = rospy.Time.now()
             with self.lock:

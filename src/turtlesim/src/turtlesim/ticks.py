@@ -10,7 +10,7 @@ import rospy
 from rosgraph_msgs.msg import Clock
 
 from course_common.lock_step import LockStep
-from course_common.sim_clock import stop_hearing_clock
+from course_common.sim_clock import set_own_time, stop_hearing_clock
 from course_common.timing import Pacer, Periodic
 from turtlesim.world import TICK_SECONDS
 
@@ -71,7 +71,7 @@ class SimulatedTicks:
 
     def _set(self, sim_ns):
         stamp = rospy.Time(0, sim_ns)
-        rospy.rostime._set_rostime(stamp)
+        set_own_time(stamp)
         self.clock_pub.publish(Clock(stamp))
 
     def _sleep_until(self, sim_ns, running):

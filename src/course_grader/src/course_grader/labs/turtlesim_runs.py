@@ -20,6 +20,7 @@ from turtlesim.msg import Pose
 from course_checks.recorded import PublisherLook, RecordedTopic, Records
 from course_checks.verdict import Verdict
 from course_checks.waiting import wait_for
+from course_grader import wall_limit
 from course_grader.labs.common import faked
 from course_grader.turtlesim_launch import PREFIX
 
@@ -61,7 +62,7 @@ def describe_launches(session, launches):
     env = dict(os.environ, HOME=side.home, ROS_HOME=side.env['ROS_HOME'],
                **{name: side.env.get(name, '') for name in ('ROS_PACKAGE_PATH', 'CMAKE_PREFIX_PATH')})
     try:
-        lines = side.run(argv, 60, env=env, cwd='/').decode(errors='replace').splitlines()
+        lines = side.run(argv, wall_limit.STEP_SECONDS, env=env, cwd='/').decode(errors='replace').splitlines()
     except Exception as error:   # noqa: B902 (a time-out, a failure: no turtlesim for any of them)
         lines = ['roslaunch could not read the launch files (%s)' % type(error).__name__]
     for index, launch in enumerate(launches):
