@@ -159,9 +159,11 @@ class _Listeners(rospy.SubscribeListener):
 class TurtlesimNode:
     def __init__(self):
         shared_poll.install(rospy.topics)  # before any topic exists, rosout's included
-        sim_record_ros.install(rospy.topics)  # each command carries who sent it
-        # What it did, for the grader (only when the grader names the file: course_common.sim_record).
+        # What it did, for the grader (only when the grader names the file: course_common.sim_record),
+        # each command with who sent it; without a record, rospy's receiving is left as it is.
         self.record = sim_record_ros.open_record()
+        if self.record:
+            sim_record_ros.install(rospy.topics)
         self._recorded = (None, 0.0, 0)   # (roster recorded, wall time of the last flush, tick ns)
         file_limit, _ = raise_open_file_limit()
         # Ctrl-C is handled in main(): rospy's own handler could run while this thread registers
