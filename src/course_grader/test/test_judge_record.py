@@ -100,6 +100,9 @@ class JudgeRecordTest(unittest.TestCase):
     def test_each_command_is_named_by_its_registered_node_and_its_user(self):
         senders = self.from_record.command_senders()
         self.assertEqual(senders, ['/forger (uid %d)' % os.geteuid()])
+        # What laser_data's check asks: who else than the grader sent commands (the forger said it was the grader).
+        self.assertEqual(self.from_record.command_senders(but=rospy.get_name()), senders)
+        self.assertEqual(self.from_record.command_senders(but='/forger'), [])
 
 
 if __name__ == '__main__':

@@ -7,6 +7,7 @@ import time
 import rosgraph
 import rospy
 
+from course_common.service_calls import ServiceCalls, parse
 from course_common.sim_record import RecordReader
 from course_checks.waiting import wait_for
 
@@ -78,6 +79,14 @@ class Records:
     def events(self, name):
         """The fields of the events named `name` so far."""
         return [entry.fields() for entry in self.entries(name)]
+
+    def service_calls(self):
+        """[(service, caller as the caller says)]: each service the simulators noted a call of, with
+        its first caller, in the order of the first calls."""
+        calls = ServiceCalls()
+        for call in self.events('service_call'):
+            calls.note(call['service'], call['caller'])
+        return parse(calls.text())
 
 
 class RecordedTopic:

@@ -68,12 +68,13 @@ class SimRecord:
         return [(entry.sim_time, fields['linear'], fields['angular'], fields['sender'])
                 for entry, fields in ((entry, entry.fields()) for entry in self.records.entries('command'))]
 
+    def command_senders(self, but=None):
+        """The senders of the commands applied, sorted; with `but`, those that are not that node."""
+        return sorted({command['sender'] for command in self.records.events('command')
+                       if but is None or but not in command['nodes']})
+
     def service_calls(self):
-        """Each service called, with its first caller, in the order of the first calls."""
-        first = {}
-        for call in self.records.events('service_call'):
-            first.setdefault(call['service'], call['caller'])
-        return list(first.items())
+        return self.records.service_calls()
 
 
 class RobotWatch:
@@ -180,10 +181,11 @@ class RobotWatch:
             return self._record.scans.entries()
         return self._scans.entries()
 
-    def command_senders(self):
-        """The senders of the commands fake_tb3 applied, as it named them (the record only)."""
+    def command_senders(self, but=None):
+        """The senders of the commands fake_tb3 applied, as it named them ('NODE (uid N)'); with
+        `but`, those other than that node (the record only)."""
         if self._record:
-            return sorted({command[3] for command in self._record.commands()})
+            return self._record.command_senders(but)
         return []
 
     def copy(self, name):

@@ -1,12 +1,13 @@
-"""Who called a simulator's services, as the simulator itself tells it on its latched topic
-~service_calls (course_common.service_calls): a node that called a service the lab does not use
-(fake_tb3's, turtlesim's teleports and /reset) is named, and the criteria judged on that run fail."""
+"""Who sent a message (by the master and the connection, not by what the sender says), and who
+called a simulator's services, as the simulator tells it (its record in a grading, its latched topic
+~service_calls in the course's tests: course_common.service_calls): a node that called a service
+the lab does not use (fake_tb3's, turtlesim's teleports and /reset) is named, and the criteria
+judged on that run fail."""
 from std_msgs.msg import String
 
 from course_common import sim_record_ros
 from course_common.service_calls import parse
 from course_checks.verdict import Verdict
-from course_checks.waiting import wait_for
 from course_testing.recording import TopicRecorder
 
 
@@ -45,16 +46,6 @@ class ServiceCallWatch:
 
     def close(self):
         self._recorder.close()
-
-
-def heard_calls(simulator, timeout=3.0):
-    """The simulator's calls, heard once from its latched topic ([] when it tells nothing in time)."""
-    watch = ServiceCallWatch(simulator)
-    try:
-        wait_for(watch.heard, timeout)
-        return watch.calls()
-    finally:
-        watch.close()
 
 
 def unused(calls, services=None):

@@ -112,16 +112,18 @@ class RobotInterface:
 
     def on_cmd_vel(self, twist):
         linear, angular = twist.linear.x, twist.angular.z
-        sender = sim_record_ros.sender_of(twist)['label'] if self.node.record else None
+        sender = sim_record_ros.sender_of(twist) if self.node.record else None
         self.node.submit(lambda: self.apply_command(linear, angular, sender))
         if self.node.lock_step:
             self.node.lock_step.commanded()   # after the submit: the next tick applies it
 
     def apply_command(self, linear, angular, sender=None):
         """In the tick thread: the command to the simulation (and, for the grader, to the record
-        with its sender). At most one warning a second of each kind: a flood of bad commands must
-        not flood the log too."""
-        self.node.note('command', robot=self.robot.name, linear=linear, angular=angular, sender=sender)
+        with its sender: sim_record_ros.sender_of). At most one warning a second of each kind: a
+        flood of bad commands must not flood the log too."""
+        if sender:
+            self.node.note('command', robot=self.robot.name, linear=linear, angular=angular,
+                           sender=sender['label'], nodes=sender['nodes'])
         try:
             notice = self.node.simulation.command(self.robot, linear, angular)
         except CommandError as error:

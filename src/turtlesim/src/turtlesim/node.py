@@ -295,8 +295,9 @@ class TurtlesimNode:
     def on_cmd_vel(self, twist, name):
         values = (twist.linear.x, twist.linear.y, twist.angular.z)
         if self.record:
-            self.note('command', turtle=name, linear=values[0], angular=values[2],
-                      sender=sim_record_ros.sender_of(twist)['label'])
+            sender = sim_record_ros.sender_of(twist)
+            self.note('command', turtle=name, linear=values[0], angular=values[2], sender=sender['label'],
+                      nodes=sender['nodes'])
         self.requests.submit(lambda now: self.world.command_velocity(name, *values, now))
         self.ticks.commanded()
 

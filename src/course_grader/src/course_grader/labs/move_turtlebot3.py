@@ -264,6 +264,13 @@ def check_laser_data(session, simulators):
                 hints = ['%d lines printed, none in the form of the slide (first: %r)' % (
                     len(run.node.lines), run.node.lines[0] if run.node.lines else '')]
             return run.judged({'laser_data': Verdict(False, 'expected %s; seen: %s' % (expected, hints[0]), hints[1:])})
+        # The turn is what no stored printout can follow: a node that stopped it (its own cmd_vel)
+        # printed scans of a robot standing still, which are the same in every grading.
+        stoppers = run.watch.command_senders(but=rospy.get_name())
+        if stoppers:
+            return run.judged({'laser_data': Verdict(False, 'expected %s; seen: %s sent velocity commands while the '
+                                                     'grader turned the robot (laser_data.py only prints the scans)'
+                                                     % (expected, ', '.join(stoppers)), hints)})
         printed = laser.printed_in_time(blocks, scans, beams, needed, criterion['print_window'])
         return run.judged({'laser_data': Verdict(printed.passed, 'expected %s; seen %s' % (expected, printed.reason),
                                                  hints)})

@@ -187,10 +187,7 @@ class TurtlesimLaunch:
 
     def service_calls(self):
         """[(service, caller as the caller says)] of the turtlesims' services, as they noted them."""
-        first = {}
-        for call in self.records.events('service_call'):
-            first.setdefault(call['service'], call['caller'])
-        return list(first.items())
+        return self.records.service_calls()
 
     def turtles(self):
         """The turtles of the turtlesim(s) now, as they recorded them (None before they told)."""
