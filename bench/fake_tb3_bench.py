@@ -38,8 +38,8 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu, JointState, LaserScan
 
-from course_testing.processes import free_port, stop_process_group
-from course_testing.waiting import wait_until
+from course_common.processes import free_port, stop_process_group
+from course_common.waiting import wait_until
 from fake_tb3.lidar import Laser
 from fake_tb3.models import get_model
 from fake_tb3.simulation import SimRobot, Simulation

@@ -22,8 +22,8 @@ import time
 import rospy
 from geometry_msgs.msg import Twist
 
-from course_testing.processes import stop_process_group
-from course_testing.waiting import wait_until
+from course_common.processes import stop_process_group
+from course_common.waiting import wait_until
 from fake_tb3_bench import TopicCounter, grid_of_robots, start_master
 
 # Run inside the simulator's process: the node under cProfile, then its CPU times to a file.

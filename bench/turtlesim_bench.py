@@ -33,8 +33,9 @@ import xmlrpc.client
 import rosgraph
 import rospy
 
-from course_testing.processes import build_environment, free_port, stop_process_group
-from course_testing.waiting import wait_until
+from course_common.processes import free_port, stop_process_group
+from course_testing.processes import build_environment
+from course_common.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn
 

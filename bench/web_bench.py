@@ -35,9 +35,10 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 
 from course_testing.browser import start_browser
-from course_testing.process_table import descendants
-from course_testing.processes import build_environment, free_port, port_open, stop_process_group
-from course_testing.waiting import wait_until
+from course_common.process_table import descendants
+from course_common.processes import free_port, port_open, stop_process_group
+from course_testing.processes import build_environment
+from course_common.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn
 

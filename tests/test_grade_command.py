@@ -11,7 +11,7 @@ import subprocess
 
 import pytest
 
-from course_testing.process_table import command_line
+from course_common.process_table import command_line
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 

@@ -12,7 +12,7 @@ import subprocess
 
 import pytest
 
-from course_testing.process_table import command_line
+from course_common.process_table import command_line
 from course_testing.processes import ignored_signals
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))

@@ -8,9 +8,9 @@ import numpy
 import pytest
 from PIL import Image
 
-from course_testing.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
+from course_common.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
 from course_testing.screen import red_pixels
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 TURTLESIM_BACKGROUND = (69, 86, 255)
 PEN = (179, 184, 255)

@@ -37,9 +37,9 @@ import subprocess
 import sys
 import time
 
-from course_testing.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
-from course_testing.processes import restore_ctrl_c
-from course_testing.waiting import poll_until
+from course_common.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
+from course_common.processes import restore_ctrl_c
+from course_common.waiting import poll_until
 
 # How much of the held core the jobs beside an alone job may use together, from their last run.
 BESIDE_SHARE = 0.6

@@ -9,9 +9,9 @@ import subprocess
 import pytest
 
 from course_testing.network.rosnet import ROOT, is_loopback, listening_sockets, node_api, start_master
-from course_testing.process_table import descendants
-from course_testing.processes import free_port
-from course_testing.waiting import wait_until
+from course_common.process_table import descendants
+from course_common.processes import free_port
+from course_common.waiting import wait_until
 
 DEVEL = os.path.join(os.environ.get('CATKIN_BUILD_BASE', ROOT), 'devel')
 LIBRARY = os.path.join(DEVEL, 'lib', 'libros_loopback.so')

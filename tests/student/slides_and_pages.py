@@ -14,7 +14,7 @@ import re
 import shutil
 from concurrent.futures import ThreadPoolExecutor
 
-from course_testing.process_table import command_line, marked_processes, new_mark, stop_marked
+from course_common.process_table import command_line, marked_processes, new_mark, stop_marked
 from test_student_workspace import COURSE_DEVEL, ROOT, SLIDES
 
 PASTED = os.path.join(SLIDES, 'pasted')

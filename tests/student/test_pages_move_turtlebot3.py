@@ -3,8 +3,8 @@ graded by the teacher's command and checked by the student's own (slides_and_pag
 import os
 import re
 
-from course_testing.processes import free_port, stop_process_group
-from course_testing.waiting import wait_until
+from course_common.processes import free_port, stop_process_group
+from course_common.waiting import wait_until
 from slides_and_pages import PASTED, full_marks_then_checked, make_package, quoted, slide
 
 

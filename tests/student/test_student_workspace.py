@@ -15,8 +15,8 @@ import tempfile
 
 import pytest
 
-from course_testing.processes import free_port, stop_process_group
-from course_testing.waiting import wait_until
+from course_common.processes import free_port, stop_process_group
+from course_common.waiting import wait_until
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 COURSE_DEVEL = os.path.join(os.environ.get('CATKIN_BUILD_BASE', ROOT), 'devel')

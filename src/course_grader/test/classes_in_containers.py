@@ -10,7 +10,7 @@ import zipfile
 
 import pytest
 
-from course_testing.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
+from course_common.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
 from example_class import EXAMPLES, ROOT, expected, labs, make_class, mismatches, outscored_twins, read_results
 from hostile_archive import link_chain_archive, markers_under
 

@@ -14,8 +14,8 @@ import zipfile
 
 import rostest
 
-from course_testing.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
-from course_testing.waiting import wait_until
+from course_common.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
+from course_common.waiting import wait_until
 from example_class import EXAMPLES, expected, labs, make_class, mismatches, read_results
 from hostile_archive import link_chain_archive, markers_under
 
@@ -31,7 +31,7 @@ def argv(pid):
     with open('/proc/%d/cmdline' % pid, 'rb') as stream:
         return stream.read().decode(errors='replace').split('\\0')
 session = os.getppid()
-while 'course_grader.session' not in argv(session):
+while 'course_grader.grading_session' not in argv(session):
     session = parent(session)
 for _ in range(600):
     children = [int(pid) for pid in os.listdir('/proc') if pid.isdigit() and int(pid) != os.getpid()

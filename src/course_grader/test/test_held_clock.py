@@ -14,8 +14,8 @@ from std_msgs.msg import Int32
 
 from course_checks import rates
 from course_grader.labs.ros_exercises import HeldClockDriver
-from course_testing.processes import stop_process_group
-from course_testing.waiting import wait_until
+from course_common.processes import stop_process_group
+from course_common.waiting import wait_until
 
 SKIPPED, MESSAGES = 10, 100
 

@@ -14,7 +14,7 @@ import rostest
 
 from course_checks.robot import RobotWatch
 from course_testing.recording import TopicRecorder
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 SCANS = 500
 # A node of the test's: it waits for a subscriber on /scan, sends SCANS numbered scans at once

@@ -20,9 +20,9 @@ from selenium.webdriver.common.keys import Keys
 from std_srvs.srv import Empty, Trigger
 
 from course_testing.browser import save_pixels
-from course_testing.processes import port_open, stop_process_group
+from course_common.processes import port_open, stop_process_group
 from course_testing.recording import TopicRecorder
-from course_testing.waiting import poll_until, wait_until
+from course_common.waiting import poll_until, wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute
 from view_in_browser import TS_BACKGROUND, ViewInBrowser, near_colour, ts_pixel

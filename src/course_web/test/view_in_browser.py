@@ -10,8 +10,8 @@ import rospy
 from selenium.webdriver.common.by import By
 
 from course_testing.browser import element_pixels, start_browser
-from course_testing.processes import free_port, port_open, stop_process_group
-from course_testing.waiting import wait_until
+from course_common.processes import free_port, port_open, stop_process_group
+from course_common.waiting import wait_until
 
 TS_PX_PER_METER = 45
 TS_BACKGROUND = (69, 86, 255)

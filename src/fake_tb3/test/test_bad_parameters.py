@@ -5,7 +5,7 @@ import unittest
 
 import rostest
 
-from course_testing.processes import together
+from course_common.processes import together
 
 CASES = [(['_model:=burgr'], "unknown TurtleBot3 model 'burgr'"),
          (['_world:=moon'], "no world 'moon'"),

@@ -12,9 +12,9 @@ import rospy
 import rostest
 from nav_msgs.msg import Odometry
 
-from course_testing.processes import stop_process_group
+from course_common.processes import stop_process_group
 from course_testing.recording import TopicRecorder
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 NAME = '/ctrl_c_fake_tb3'
 

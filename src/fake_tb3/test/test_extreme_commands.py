@@ -19,7 +19,7 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import UInt32
 
 from course_testing.recording import TopicRecorder
-from course_testing.waiting import measurement_window, wait_until
+from course_common.waiting import measurement_window, wait_until
 from fake_tb3_testing import rosout_lines
 
 MAX = 1.7976931348623157e308

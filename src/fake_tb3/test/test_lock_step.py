@@ -16,9 +16,9 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 
-from course_testing.processes import stop_process_group
+from course_common.processes import stop_process_group
 from course_testing.recording import TopicRecorder
-from course_testing.waiting import measurement_window, wait_until
+from course_common.waiting import measurement_window, wait_until
 
 # The wall's face is at x = 2.0 and the laser 0.032 m behind base_footprint: the front beam reads
 # 2.032 - x. Answered at once, every scan finds the robot 0.1 m (0.5 m/s for a scan period of

@@ -13,7 +13,7 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, JointState, LaserScan
 
 from course_testing.recording import TopicRecorder
-from course_testing.waiting import measurement_window, wait_until
+from course_common.waiting import measurement_window, wait_until
 from fake_tb3_testing import lookup
 
 WINDOW = 8.0  # wall seconds over which rates are measured

@@ -14,9 +14,9 @@ import unittest
 import rospy
 import rostest
 
-from course_testing.processes import stop_process_group
+from course_common.processes import stop_process_group
 from course_testing.screen import VirtualScreen, red_pixels
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 
 def red_points(screen, path):

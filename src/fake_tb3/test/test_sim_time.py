@@ -20,7 +20,7 @@ from std_msgs.msg import String, UInt32
 from std_srvs.srv import Trigger
 
 from course_testing.recording import TopicRecorder
-from course_testing.waiting import measurement_window, wait_until
+from course_common.waiting import measurement_window, wait_until
 from fake_tb3_testing import rosout_lines, stamp_rate
 
 REAL_TIME_FACTOR = 10.0

@@ -10,7 +10,7 @@ from nav_msgs.msg import Odometry
 from std_msgs.msg import UInt32
 
 from course_testing.recording import TopicRecorder, path_length
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 
 class WandererTest(unittest.TestCase):

@@ -9,7 +9,7 @@ from sensor_msgs.msg import LaserScan
 
 from course_checks import launch
 from course_checks.robot import RobotWatch
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 REPUBLISH_SECONDS = 0.5  # a lone node's scan sent again after this long without an answer
 

@@ -8,7 +8,7 @@ from sensor_msgs.msg import LaserScan
 
 from course_checks import driving
 from course_checks.robot import largest_move, node_names
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 from move_turtlebot3_testing import LabTestCase, Launch, LoneNode
 
 # The wall of world wall_ahead has its face at x = 2.0; the laser sits 0.032 m behind the centre.

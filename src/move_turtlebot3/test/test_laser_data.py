@@ -10,7 +10,7 @@ from course_checks import laser
 from course_checks.laser import printed_blocks
 from course_checks.robot import node_names
 from course_testing.processes import run
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 from move_turtlebot3_testing import LabTestCase, Launch
 
 BEAMS = [0, 90, 180, 270, 359]   # the slide's five beams

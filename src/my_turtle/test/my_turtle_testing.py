@@ -3,7 +3,7 @@ import re
 
 from course_checks.turtle import turtle_poses
 from course_testing.processes import ReadPtyProgram
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 # A pose line as the slide shows it, e.g. "[ INFO] [1513815819.814175430]: x: 8.46, y: 5.54"
 POSE_LINE = r'^\[ INFO\] \[\d+\.\d+\]: x: (\d+\.\d\d), y: (\d+\.\d\d)$'

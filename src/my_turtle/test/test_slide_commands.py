@@ -7,7 +7,7 @@ import unittest
 import rostest
 
 from course_testing.processes import PtyProgram
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 
 def shell(*command):

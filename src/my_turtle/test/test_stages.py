@@ -11,7 +11,7 @@ from std_srvs.srv import Empty
 
 from course_checks import turtle
 from course_checks.turtle import POSE_RATE_HZ, duration, tick_speeds, travelled
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 from my_turtle_testing import POSE_LINE, PrintingNode, turtle1_poses
 
 FORWARD_SPEED_MPS = 0.5

@@ -12,7 +12,7 @@ from std_srvs.srv import Trigger
 
 from course_checks.turtle import travelled, turned
 from course_testing.processes import PtyProgram
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 from my_turtle_testing import hold_key, turtle1_poses
 
 SIDE_M = 1.5

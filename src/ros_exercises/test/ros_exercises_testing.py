@@ -5,7 +5,7 @@ import rospy
 from std_srvs.srv import Trigger
 
 from course_testing.processes import ReadPtyProgram
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 
 class Command:

@@ -10,7 +10,7 @@ from geometry_msgs.msg import Twist
 
 from course_checks import turtle
 from course_checks.turtle import turtle_poses
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 from ros_exercises_testing import Command
 
 TURTLE1_START = (5.544445, 5.544445)

@@ -11,7 +11,7 @@ from turtlesim.srv import Kill
 
 from course_checks.turtle import at_pose, turtle_poses
 from course_testing.processes import run
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 from ros_exercises_testing import Command
 
 

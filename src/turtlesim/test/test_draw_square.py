@@ -8,7 +8,7 @@ import rospy
 import rostest
 
 from course_testing.recording import TopicRecorder
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim_testing import RosoutWatcher
 

@@ -17,7 +17,7 @@ from std_srvs.srv import Empty, Trigger
 
 from course_common.service_calls import parse
 from course_testing.recording import TopicRecorder
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
 from turtlesim_testing import (RosoutWatcher, connected_publisher, graph, moved, published_topics,

@@ -13,7 +13,7 @@ from PIL import Image as PilImage
 
 from course_testing.recording import TopicRecorder
 from course_testing.screen import VirtualScreen
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import SetPen, TeleportAbsolute
 from turtlesim_testing import graph, published_topics

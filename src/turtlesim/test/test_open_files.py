@@ -14,9 +14,9 @@ import rospy
 import rostest
 from geometry_msgs.msg import Twist
 
-from course_testing.processes import stop_process_group
+from course_common.processes import stop_process_group
 from course_testing.recording import TopicRecorder
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 from turtlesim.holdings import FILE_RESERVE
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, Spawn, TeleportAbsolute

@@ -9,7 +9,7 @@ import rostest
 
 from course_testing.processes import PtyProgram
 from course_testing.recording import TopicRecorder
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn, TeleportAbsolute
 from turtlesim_testing import moved, publishes_to, wait_until_still

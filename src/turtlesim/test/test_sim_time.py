@@ -12,7 +12,7 @@ from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
 
 from course_testing.recording import TopicRecorder
-from course_testing.waiting import measurement_window, wait_until
+from course_common.waiting import measurement_window, wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn, TeleportAbsolute
 from turtlesim_testing import RosoutWatcher, connected_publisher, moved, twist

@@ -7,7 +7,7 @@ from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Log
 
 from course_testing.recording import TopicRecorder
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 LEVEL_NAMES = {Log.DEBUG: 'DEBUG', Log.INFO: 'INFO', Log.WARN: 'WARN', Log.ERROR: 'ERROR', Log.FATAL: 'FATAL'}
 

@@ -12,7 +12,7 @@ import rostest
 from geometry_msgs.msg import Twist
 
 from course_testing.processes import PtyProgram
-from course_testing.waiting import measurement_window, wait_until
+from course_common.waiting import measurement_window, wait_until
 
 NODE = '/turtlebot3_teleop_keyboard'
 

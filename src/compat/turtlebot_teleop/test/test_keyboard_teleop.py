@@ -9,7 +9,7 @@ import rostest
 from geometry_msgs.msg import Twist
 
 from course_testing.processes import PtyProgram
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 TELEOP_TOPIC = '/cmd_vel_mux/input/teleop'
 LAUNCH = ['roslaunch', 'turtlebot_teleop', 'keyboard_teleop.launch']

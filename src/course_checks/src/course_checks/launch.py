@@ -2,6 +2,7 @@
 own, its output kept line by line (bounded: a node printing without end stays within memory), and
 stopped as Ctrl-C in a terminal stops it."""
 import collections
+import errno
 import os
 import re
 import signal
@@ -9,7 +10,7 @@ import subprocess
 import threading
 import time
 
-from course_testing.processes import stop_process_group
+from course_common.processes import stop_process_group
 
 MAX_LINES = 5000             # lines of output kept in memory
 MAX_LOG_BYTES = 5 * 2 ** 20  # of output written to the log file
@@ -32,7 +33,14 @@ class Launch:
                                         stderr=subprocess.STDOUT, env=env, cwd=cwd, text=True,
                                         errors='replace', start_new_session=True, **as_user)
         self._reader = threading.Thread(target=self._read, daemon=True)
-        self._reader.start()
+        try:
+            self._reader.start()
+        except RuntimeError:   # can't start new thread: a program nobody reads would block, so none
+            stop_process_group(self.process, 0)
+            self.process.stdout.close()
+            if self._log:
+                self._log.close()
+            raise OSError(errno.EAGAIN, 'no thread left to read the output of %s' % os.path.basename(argv[0]))
 
     def _read(self):
         logged = 0

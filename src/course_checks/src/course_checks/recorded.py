@@ -9,7 +9,7 @@ import rospy
 
 from course_common.service_calls import ServiceCalls, parse
 from course_common.sim_record import RecordReader
-from course_checks.waiting import wait_for
+from course_common.waiting import wait_for
 
 # Wall seconds between two looks at the master for other publishers on a simulator's topics.
 PUBLISHER_LOOK_SECONDS = 0.1

@@ -19,9 +19,9 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import UInt32
 
 from course_checks.recorded import PublisherLook, RecordedTopic, Records
-from course_checks.service_calls import ServiceCallWatch, sender
+from course_checks.callers import ServiceCallWatch, sender
 from course_testing.recording import TopicRecorder, path_length
-from course_testing.waiting import poll_until
+from course_common.waiting import poll_until
 
 SIMULATOR = '/fake_tb3'
 # The topics only fake_tb3 publishes on (the checks judge by them).

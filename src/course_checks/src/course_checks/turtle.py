@@ -6,7 +6,7 @@ import math
 import numpy
 from turtlesim.msg import Pose
 
-from course_checks import figures, printed_poses, service_calls
+from course_checks import figures, printed_poses, callers
 from course_checks.verdict import Verdict, decimal
 from course_testing.recording import TopicRecorder, path_length
 
@@ -124,8 +124,8 @@ def no_jumps(recorder, turtle, real_time_factor=1.0):
 def no_unused_calls(calls):
     """A failing verdict naming who called a teleport or /reset of turtlesim, among the calls
     [(service, caller)] turtlesim noted, or None when nobody did."""
-    calls = service_calls.unused(calls, UNUSED_SERVICES)
-    return service_calls.called(['x'], calls)['x'] if calls else None
+    calls = callers.unused(calls, UNUSED_SERVICES)
+    return callers.called(['x'], calls)['x'] if calls else None
 
 
 def full_turn(radius):

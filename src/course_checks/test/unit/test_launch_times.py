@@ -3,7 +3,7 @@ can tell when a node printed what it printed."""
 import time
 
 from course_checks.launch import Launch
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 
 def test_each_line_comes_with_the_time_it_was_read(tmp_path):

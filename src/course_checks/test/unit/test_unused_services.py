@@ -1,5 +1,5 @@
 """Calls of a simulator's services the lab does not use: which count, and the reason that names them."""
-from course_checks import service_calls, turtle
+from course_checks import callers, turtle
 
 
 CALLS = [('/clear', '/clear_node'), ('/turtle1/teleport_absolute', '/circle'), ('/reset', '/reset_node'),
@@ -7,16 +7,16 @@ CALLS = [('/clear', '/clear_node'), ('/turtle1/teleport_absolute', '/circle'), (
 
 
 def test_the_turtle_labs_count_teleports_reset_and_save_canvas_not_clear():
-    assert service_calls.unused(CALLS, turtle.UNUSED_SERVICES) == [
+    assert callers.unused(CALLS, turtle.UNUSED_SERVICES) == [
         ('/turtle1/teleport_absolute', '/circle'), ('/reset', '/reset_node'), ('/turtlesim/save_canvas', '/tour')]
 
 
 def test_every_call_counts_where_the_lab_uses_no_service():
-    assert service_calls.unused(CALLS) == CALLS
+    assert callers.unused(CALLS) == CALLS
 
 
 def test_the_criteria_fail_naming_the_node_and_the_service():
-    verdicts = service_calls.called(['avoid_stops', 'avoid_stays'], [('/fake_tb3/save_picture', '/obstacle_avoidance')])
+    verdicts = callers.called(['avoid_stops', 'avoid_stays'], [('/fake_tb3/save_picture', '/obstacle_avoidance')])
     assert sorted(verdicts) == ['avoid_stays', 'avoid_stops']
     for verdict in verdicts.values():
         assert not verdict.passed

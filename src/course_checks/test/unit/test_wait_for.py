@@ -1,7 +1,7 @@
-"""course_checks.waiting: a wait that times out is an answer (False), never an assertion."""
+"""course_common.waiting: a wait that times out is an answer (False), never an assertion."""
 import time
 
-from course_checks.waiting import Deadline, wait_for
+from course_common.waiting import Deadline, wait_for
 
 
 def test_a_condition_that_holds_is_true():

@@ -10,7 +10,7 @@ import time
 from course_grader import rubric as rubrics
 from course_grader.grader import Grader
 from course_grader.submission import package_name, terminal_text
-from course_testing.processes import exit_on_terminate
+from course_common.processes import exit_on_terminate
 
 COUNTS = ('This is your own check: the teacher\'s run, in a container, is the one that counts.')
 

@@ -17,15 +17,15 @@ from concurrent.futures import ThreadPoolExecutor
 
 from course_grader import feedback, gradescope, reports, results, rubric as rubrics, wall_limit
 from course_grader.submission import SubmissionError, ascii_name, find_package, student_of, terminal_text, unpack
-from course_testing import processes
-from course_testing.process_table import stop_marked
-from course_testing.waiting import poll_until
+from course_common import processes
+from course_common.process_table import stop_marked
+from course_common.waiting import poll_until
 
 MARKER = '.course_grader'            # in --out: the folder is the grader's (it may empty it)
 RUN_MARK = 'COURSE_GRADER_RUN'       # in the environment of everything a --no-container session starts
 MAX_COPIED_BYTES = 50 * 2 ** 20      # of what one sandbox leaves in its output folder
 # The grading session (grade_submission), by its module: rosrun's look-up costs half a second.
-SESSION = ['/usr/bin/python3', '-m', 'course_grader.session']
+SESSION = ['/usr/bin/python3', '-m', 'course_grader.grading_session']
 STEP_PREFIX = 'grade_submission: '   # a line of the session that reports a step and its time
 # The trusted side of a container is root with no capability but these: start the student's side
 # as the user `student`, and stop it. No write access anywhere else, no other user's processes.
@@ -255,7 +255,7 @@ class Grader:
         """The session on this machine, as our user: the student's side apart only in its
         environment (no overlay on the trusted side), its process groups and its folder, and the
         result read from the session's standard output, as from a container (docs/grading.md)."""
-        from course_testing.processes import stop_process_group
+        from course_common.processes import stop_process_group
         mark = '%s-%s' % (self.run_id, uuid.uuid4().hex)
         env = dict(os.environ, ROS_HOME=os.path.join(scratch, 'ros'))
         env[RUN_MARK] = mark

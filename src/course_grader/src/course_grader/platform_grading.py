@@ -22,7 +22,7 @@ from course_grader.check import print_result
 from course_grader.grader import SESSION, _limit_resources
 from course_grader.submission import (MAX_UNPACKED_BYTES, SubmissionError, check_folder, find_package, terminal_text,
                                       unpack, upload_inside)
-from course_testing.process_table import proc_fd, stop_user
+from course_common.process_table import proc_fd, stop_user
 
 
 def is_empty(folder):
@@ -84,7 +84,7 @@ def grade_folder(rubric, folder, student, work, student_user='student'):
     limit = wall_limit.of_rubric(rubric)
     reason = None
     # The descriptor of /proc handed down where there is none (Gradescope's chroot), so that the
-    # session can stop the student's processes between its steps (course_testing.process_table).
+    # session can stop the student's processes between its steps (course_common.process_table).
     handed_down = () if proc_fd() is None else (proc_fd(),)
     with open(log, 'wb') as stream:
         process = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=stream, stderr=subprocess.STDOUT, env=env,

@@ -1,14 +1,18 @@
 """The grader starts fake_tb3 itself (its executable's main, prepared ahead of the run), not through
 world.launch: the parameters it sets beside a run's own must be those world.launch would set, or
 the run sees another simulator."""
+import errno
 import os
 import re
+import stat
+import types
 import xml.etree.ElementTree as ElementTree
 
+import pytest
 import rospkg
 import yaml
 
-from course_grader.labs.move_turtlebot3 import LAUNCH_DEFAULTS
+from course_grader.labs.move_turtlebot3 import LAUNCH_DEFAULTS, PreparedSimulator, Simulators
 
 
 def world_launch_parameters():
@@ -28,3 +32,45 @@ def world_launch_parameters():
 def test_the_grader_sets_what_world_launch_sets_beside_a_runs_settings():
     launched = world_launch_parameters()
     assert {name: launched[name] for name in LAUNCH_DEFAULTS} == LAUNCH_DEFAULTS
+
+
+class SandboxOutOfProcesses:
+    """A session whose trusted side cannot start a program while `full` holds (a fork bomb of the
+    run before took every process or thread of the sandbox)."""
+
+    def __init__(self, folder):
+        self.folder = folder
+        self.full = True
+        self.started = []
+
+    def log_path(self, name):
+        return os.path.join(self.folder, name)
+
+    def record_path(self, name):
+        return os.path.join(self.folder, '%s.record' % name)
+
+    def trusted(self, argv, log_name, record=None):
+        if self.full:
+            raise OSError(errno.EAGAIN, 'no thread left to read the output of python3')
+        self.started.append((log_name, record))
+        return types.SimpleNamespace(ended=lambda: False)
+
+
+def test_a_simulator_that_could_not_start_leaves_nothing_in_the_way_of_the_next(tmp_path):
+    session = SandboxOutOfProcesses(str(tmp_path))
+    simulators = Simulators(session, ['trajectory.py', 'laser_data.py'])
+    with pytest.raises(OSError):
+        simulators.take()
+    assert os.listdir(str(tmp_path)) == []   # its FIFO gone
+    session.full = False                      # the fork bomb stopped with its run
+    assert simulators.take().log_name == 'sim_trajectory.txt'
+    assert simulators.take().log_name == 'sim_laser_data.txt'
+    assert [log for log, _ in session.started] == ['sim_trajectory.txt', 'sim_laser_data.txt']
+
+
+def test_a_fifo_left_by_an_earlier_preparation_is_replaced(tmp_path):
+    session = SandboxOutOfProcesses(str(tmp_path))
+    session.full = False
+    os.mkfifo(session.log_path('.sim_laser_data.txt.go'))
+    prepared = PreparedSimulator(session, 'sim_laser_data.txt')
+    assert stat.S_ISFIFO(os.stat(prepared.fifo).st_mode)

@@ -5,7 +5,7 @@ import time
 
 import rospy
 
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 
 class TopicRecorder:

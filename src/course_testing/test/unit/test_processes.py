@@ -5,10 +5,10 @@ import subprocess
 import sys
 import threading
 
-from course_testing.process_table import command_line, user_processes
-from course_testing.processes import (ReadPtyProgram, free_port, ignored_signals, port_open, run, stop_process_group,
-                                      together)
-from course_testing.waiting import wait_until
+from course_common.process_table import command_line, user_processes
+from course_common.processes import free_port, port_open, stop_process_group, together
+from course_testing.processes import ReadPtyProgram, ignored_signals, run
+from course_common.waiting import wait_until
 
 # The programs below wait in short sleeps, as rospy.spin does. Python runs a signal handler between
 # its own steps: a signal that came after the print but before sleep's system call would be handled
@@ -87,7 +87,7 @@ def test_a_free_port_can_be_listened_on():
 # then starts a roslaunch stand-in that relies on the default SIGINT (KeyboardInterrupt).
 RESTORES_THEN_STARTS = '''
 import subprocess, sys
-from course_testing.processes import restore_ctrl_c
+from course_common.processes import restore_ctrl_c
 restore_ctrl_c()
 child = subprocess.Popen([sys.executable, '-c', "import time; print('ready', flush=True); time.sleep(60)"],
                          stdout=subprocess.PIPE, universal_newlines=True)
@@ -138,7 +138,7 @@ def test_a_read_program_that_prints_more_than_a_terminal_holds_does_not_block():
 # A program that starts a child in a session of its own and stops it in a finally block.
 STOPS_ITS_CHILD_IN_FINALLY = '''
 import signal, subprocess, sys, time
-from course_testing.processes import exit_on_terminate
+from course_common.processes import exit_on_terminate
 if sys.argv[1] == 'handled':
     exit_on_terminate()
 else:   # the default, even where the test runs with SIGHUP ignored (nohup) and a child inherits that

@@ -5,7 +5,7 @@ import numpy as np
 from PIL import Image
 
 from course_testing.screen import VirtualScreen, can_make_screens, red_pixels
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 RED_WINDOW = """
 import tkinter

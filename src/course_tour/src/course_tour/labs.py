@@ -16,7 +16,7 @@ from course_checks import driving
 from course_testing.processes import PtyProgram
 from course_testing.recording import TopicRecorder, path_length
 from course_testing.screen import VirtualScreen, can_make_screens, red_pixels
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 LabReport = collections.namedtuple('LabReport', 'lines pictures')
 Lab = collections.namedtuple('Lab', 'name title run')

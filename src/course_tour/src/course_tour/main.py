@@ -9,7 +9,7 @@ import traceback
 
 from course_tour.labs import LABS
 from course_tour.session import Session
-from course_testing.processes import exit_on_terminate, restore_ctrl_c
+from course_common.processes import exit_on_terminate, restore_ctrl_c
 
 
 def parse_args(argv):

@@ -5,7 +5,7 @@ master the user already runs. Each lab starts its launch files here and stops th
 Ctrl-C in a terminal would, so the simulators save their pictures at shutdown. roslaunch starts each
 node in a session of its own, out of reach of the launch's process group: each launch, and the
 tour as a whole, marks the environment of what it starts, and what still carries the mark once
-it has been stopped is killed (course_testing.process_table).
+it has been stopped is killed (course_common.process_table).
 """
 import os
 import subprocess
@@ -13,9 +13,9 @@ import subprocess
 import rosgraph
 import rospy
 
-from course_testing.process_table import new_mark, stop_marked, with_mark
-from course_testing.processes import free_port, stop_process_group
-from course_testing.waiting import wait_until
+from course_common.process_table import new_mark, stop_marked, with_mark
+from course_common.processes import free_port, stop_process_group
+from course_common.waiting import wait_until
 
 
 ROSCORE_PARAMS = {'/run_id', '/rosdistro', '/rosversion'}

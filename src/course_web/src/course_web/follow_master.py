@@ -11,7 +11,7 @@ import time
 
 import rosgraph
 
-from course_testing.processes import stop_process_group
+from course_common.processes import stop_process_group
 
 POLL = 0.5  # s
 VIEW_NODE = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'nodes', 'view')

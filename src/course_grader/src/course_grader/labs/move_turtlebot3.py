@@ -8,14 +8,14 @@ import os
 import rospy
 from geometry_msgs.msg import Twist, Vector3
 
-from course_checks import driving, laser, service_calls
+from course_checks import driving, laser, callers
 from course_checks.robot import SIMULATOR, RobotWatch, largest_move, node_names, travelled
 from course_checks.verdict import Verdict
-from course_checks.waiting import Deadline
+from course_common.waiting import Deadline
 from course_grader import feedback
 from course_grader.labs.common import StudentNode, faked, run_each
-from course_testing.processes import together
-from course_testing.waiting import poll_until
+from course_common.processes import together
+from course_common.waiting import poll_until
 
 SIMULATION = ('script', 'world', 'x_pos', 'y_pos', 'noise_stddev', 'noise_seed', 'real_time_factor')
 CRITERIA = {
@@ -46,6 +46,7 @@ class PreparedSimulator:
         self.fifo = session.log_path('.%s.go' % log_name)
         # What fake_tb3 did, as it tells it: the evidence of the run (course_common.sim_record).
         self.record = session.record_path(log_name)
+        self.discard_fifo()   # of a simulator prepared before for this run, which never ran
         os.mkfifo(self.fifo, 0o600)
         # Started as fake_tb3_node would be, with the parameters world.launch would set (roslaunch's
         # own start and stop cost about a second each per run).
@@ -53,7 +54,7 @@ class PreparedSimulator:
             self.launch = session.trusted(['/usr/bin/python3', '-c', PREPARED_FAKE_TB3, self.fifo,
                                            '__name:=' + SIMULATOR.lstrip('/')], log_name,
                                           record=self.record)
-        except OSError:   # no process left in the sandbox (a fork bomb of the run before)
+        except BaseException:   # no process or thread left in the sandbox (a fork bomb of the run before)
             self.discard_fifo()
             raise
 
@@ -73,7 +74,7 @@ class PreparedSimulator:
         return self.launch
 
     def discard_fifo(self):
-        if os.path.exists(self.fifo):
+        if os.path.lexists(self.fifo):
             os.remove(self.fifo)
 
 
@@ -170,7 +171,7 @@ class Run:
             return faked(outcomes, impostors, SIMULATOR)
         calls = self.watch.service_calls()
         if calls:
-            return service_calls.called(outcomes, calls)
+            return callers.called(outcomes, calls)
         if self.sim_ended:
             reason = ('not judged: the simulator stopped during the run, before the grader stopped it (see %s)'
                       % self.sim_log)

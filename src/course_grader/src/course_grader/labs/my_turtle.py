@@ -11,7 +11,7 @@ from geometry_msgs.msg import Twist
 from course_checks import turtle
 from course_checks.robot import node_names
 from course_checks.verdict import Verdict
-from course_checks.waiting import Deadline, wait_for
+from course_common.waiting import Deadline, wait_for
 from course_grader.labs.common import run_each
 from course_grader.labs.turtlesim_runs import TurtlesimLaunch
 

@@ -12,7 +12,7 @@ from std_msgs.msg import Int32
 
 from course_checks import figures, rates, turtle
 from course_checks.verdict import Verdict
-from course_checks.waiting import Deadline
+from course_common.waiting import Deadline
 from course_common.timing import Pacer
 from course_grader.labs.common import run_each
 from course_grader.labs.turtlesim_runs import SimulatedClock, TurtlesimLaunch, describe_launches

@@ -5,9 +5,9 @@ gives it: its name, namespace, remappings and private parameters. With a real-ti
 turtlesim runs on its own simulated clock that much faster than real time, and so do the student's
 nodes (/use_sim_time); with lock_step too, each tick waits for the student's answer (turtlesim's
 ~lock_step), so that a closed loop meets the same simulated delays at any factor and load."""
+import functools
 import json
 import os
-import threading
 
 import rosgraph
 import rosgraph.names
@@ -19,10 +19,11 @@ from turtlesim.msg import Pose
 
 from course_checks.recorded import PublisherLook, RecordedTopic, Records
 from course_checks.verdict import Verdict
-from course_checks.waiting import wait_for
+from course_common.waiting import wait_for
 from course_grader import wall_limit
 from course_grader.labs.common import faked
 from course_grader.turtlesim_launch import PREFIX
+from course_common.processes import together
 
 MAX_TURTLESIMS = 3           # turtlesim nodes of one launch file started for it, at most
 MAX_PARAMS = 50              # of one turtlesim node's private parameters passed on, at most
@@ -222,11 +223,7 @@ class TurtlesimLaunch:
         stops = [(launch, 15) for launch, _ in self.simulators.values()]
         if self.run:
             stops.append((self.run, self.session.rubric.limits['stop_seconds']))
-        threads = [threading.Thread(target=launch.stop, args=(seconds,)) for launch, seconds in stops]
-        for thread in threads:
-            thread.start()
-        for thread in threads:
-            thread.join()
+        together(*[functools.partial(launch.stop, seconds) for launch, seconds in stops])
         self.publishers.look(0)
         self.publishers.close()
 

@@ -16,7 +16,7 @@ import time
 import rospy
 from geometry_msgs.msg import Twist
 
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 WAIT_FOR_SUBSCRIBER_SECONDS = 20.0
 

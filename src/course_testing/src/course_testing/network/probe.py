@@ -15,7 +15,7 @@ import rosgraph
 import rospy
 import rostopic
 
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 MASTER_TIMEOUT = 60.0
 

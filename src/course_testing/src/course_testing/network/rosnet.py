@@ -17,9 +17,9 @@ import xmlrpc.client
 
 import rosgraph
 
-from course_testing.process_table import descendants
-from course_testing.processes import stop_process_group
-from course_testing.waiting import wait_until
+from course_common.process_table import descendants
+from course_common.processes import stop_process_group
+from course_common.waiting import wait_until
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 # The workspace: this file is src/course_testing/src/course_testing/network/rosnet.py in it.
@@ -133,7 +133,7 @@ def master_is_online(uri):
 
 
 # Waits, inside a network namespace, until the master of ROS_MASTER_URI answers.
-WAIT_FOR_MASTER = ('import rosgraph\nfrom course_testing.waiting import wait_until\n'
+WAIT_FOR_MASTER = ('import rosgraph\nfrom course_common.waiting import wait_until\n'
                    'wait_until(rosgraph.is_master_online, 20, "the master of ROS_MASTER_URI", poll=0.1)\n')
 
 

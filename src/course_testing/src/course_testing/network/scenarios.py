@@ -19,9 +19,9 @@ from rosgraph.network import encode_ros_handshake_header
 
 from course_testing.network.rosnet import (HERE, PYTHON, listening_sockets, node_api, now, project_environment,
                                            received_bytes, start_master, start_probe)
-from course_testing.process_table import descendants
-from course_testing.processes import free_port
-from course_testing.waiting import wait_until
+from course_common.process_table import descendants
+from course_common.processes import free_port
+from course_common.waiting import wait_until
 
 TURTLESIM_POSE_HZ = 62.5
 FAKE_TB3_ODOM_HZ = 30.0

@@ -3,9 +3,9 @@ import os
 import signal
 import subprocess
 
-from course_testing.process_table import (command_line, descendants, marked_processes, new_mark, stop_marked,
+from course_common.process_table import (command_line, descendants, marked_processes, new_mark, stop_marked,
                                           user_processes, with_mark)
-from course_testing.waiting import wait_until
+from course_common.waiting import wait_until
 
 
 def test_what_escaped_to_init_in_sessions_of_its_own_is_found_and_stopped_by_its_mark():

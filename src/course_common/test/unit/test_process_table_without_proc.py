@@ -5,8 +5,8 @@ import subprocess
 
 import pytest
 
-from course_testing import process_table
-from course_testing.waiting import wait_until
+from course_common import process_table
+from course_common.waiting import wait_until
 
 
 @pytest.fixture

@@ -3,7 +3,7 @@ import time
 
 import pytest
 
-from course_testing.waiting import measurement_window, wait_until
+from course_common.waiting import measurement_window, wait_until
 
 
 def test_wait_until_returns_the_first_true_value():

@@ -21,9 +21,9 @@ from concurrent.futures import ThreadPoolExecutor
 from course_common import sim_record
 from course_checks.launch import Launch
 from course_grader import feedback, labs, results, rubric as rubrics, wall_limit
-from course_testing.process_table import stop_user
-from course_testing.processes import together
-from course_testing.waiting import poll_until
+from course_common.process_table import stop_user
+from course_common.processes import together
+from course_common.waiting import poll_until
 from course_grader.results import Verdict
 
 
@@ -159,7 +159,7 @@ class Master:
     and starts the grader's own rospy node on it."""
 
     def __init__(self, log_path):
-        from course_testing.processes import free_port
+        from course_common.processes import free_port
         self.port = free_port()
         self.uri = 'http://localhost:%d' % self.port
         self.process = Launch(['rosmaster', '--core', '-p', str(self.port)], log_path)

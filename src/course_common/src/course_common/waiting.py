@@ -1,11 +1,13 @@
-"""Waiting for a condition instead of sleeping, and the fixed windows that measurements count over."""
+"""Waiting for a condition instead of sleeping: poll_until, the one deadline loop; wait_until, which
+fails with a sentence (the tests); wait_for and Deadline, whose time-out is an answer (the checks that
+judge a student's node); and measurement_window, the fixed window that a rate is counted over."""
 import time
 
 
 def poll_until(condition, timeout, poll=0.01):
     """Poll condition() until it returns a true value or timeout seconds pass; return its last
-    value (false on time-out). The one deadline loop: wait_until asserts on it, the checks that
-    judge a student's node (course_checks.waiting) take its answer as it is."""
+    value (false on time-out). The one deadline loop: wait_until asserts on it, wait_for takes
+    its answer as it is."""
     deadline = time.monotonic() + timeout
     while True:
         value = condition()
@@ -35,3 +37,24 @@ def measurement_window(seconds, start=None):
     if remaining > 0:
         time.sleep(remaining)
     return time.monotonic()
+
+
+class Deadline:
+    """The end of a run that may last `seconds` of wall time."""
+
+    def __init__(self, seconds):
+        self.end = time.monotonic() + seconds
+
+    def left(self, at_least=0.5):
+        return max(at_least, self.end - time.monotonic())
+
+    def wait(self, condition, seconds=None, gave_up=None):
+        """wait_for condition() within the time left (and `seconds` at most, when given)."""
+        return wait_for(condition, self.left() if seconds is None else min(seconds, self.left()), gave_up)
+
+
+def wait_for(condition, seconds, gave_up=None, poll=0.05):
+    """Whether condition() holds within `seconds`; False on time-out, or as soon as gave_up()
+    (say: the node ended, nothing more will come from it)."""
+    poll_until(lambda: condition() or (gave_up is not None and gave_up()), seconds, poll)
+    return bool(condition())
