@@ -9,6 +9,7 @@ import time
 
 from course_grader import rubric as rubrics
 from course_grader.grader import Grader
+from course_grader.sandbox import Options
 from course_grader.submission import package_name, terminal_text
 from course_common.processes import exit_on_terminate
 
@@ -93,10 +94,8 @@ def main(argv=None):
     out = tempfile.mkdtemp(prefix='course-check-%s-' % args.lab)
     print('check: grading the package at %s with the rubric of %s, on this machine%s'
           % (folder, args.lab, ', the criterion %s only' % args.only if args.only else ''), flush=True)
-    grading = argparse.Namespace(out=out, jobs=1, no_container=True, rubric=None, image=None, only=args.only)
-    grader = Grader(grading, rubric, announce=False, on_step=lambda step: print('check: %s' % step, flush=True))
-    grader.total = 1
-    result = grader.grade_one(folder)
+    options = Options(only=args.only, on_step=lambda step: print('check: %s' % step, flush=True))
+    result = Grader(rubric, out, options, announce=False).grade_one(folder)
     print_result(result, args.only)
     student = os.path.join(out, result['folder'])
     print('check: pictures and logs in %s' % student)

@@ -11,18 +11,7 @@ import zipfile
 import rospkg
 
 from course_grader import classroom, rubric as rubrics
-from course_grader.grader import CONTAINER_LIMITS, TRUSTED_CAPABILITIES
-
-# GitHub's grading step starts its container as ./grade.sh does (grader.py, _run_in_container):
-# these options, then the submission mounted read-only at /submission, the image and the command.
-CONTAINER_BASE = ['--rm', '--init', '--network', 'none', '--user', 'root', '--read-only',
-                  '--security-opt', 'no-new-privileges']
-CONTAINER_ENV = ['-e', 'HOME=/grader', '-e', 'ROS_HOME=/grader/ros']
-
-
-def container_options():
-    """The options of the grading step's `docker run`, as ./grade.sh's (one list of words)."""
-    return CONTAINER_BASE + TRUSTED_CAPABILITIES + CONTAINER_ENV + CONTAINER_LIMITS
+from course_grader.sandbox import container_options
 
 
 def option_lines(options):

@@ -8,21 +8,16 @@ only the platform's file differs (classroom.py, gradescope.py)."""
 import argparse
 import contextlib
 import os
-import pwd
 import shutil
-import signal
-import subprocess
 import sys
 import tempfile
 import time
 import uuid
 
-from course_grader import classroom, feedback, gradescope, results, rubric as rubrics, wall_limit
+from course_grader import classroom, feedback, gradescope, results, rubric as rubrics, sandbox
 from course_grader.check import print_result
-from course_grader.grader import SESSION, _limit_resources
 from course_grader.submission import (MAX_UNPACKED_BYTES, SubmissionError, check_folder, find_package, terminal_text,
                                       unpack, upload_inside)
-from course_common.process_table import proc_fd, stop_user
 
 
 def is_empty(folder):
@@ -68,44 +63,20 @@ def grade_folder(rubric, folder, student, work, student_user='student'):
     side's own folder (its logs and the result; nothing of the student's side can write there)."""
     started = time.monotonic()
     submission = tempfile.mkdtemp(prefix='course-submission-')
+    staging = tempfile.mkdtemp(prefix='course-result-', dir=work)
     try:
         package = stage(folder, rubric, submission)
+        grading = sandbox.Grading(rubric, submission, package, student, staging)
+        reason = sandbox.in_place(grading, sandbox.Options(), work, student_user)
+        result = results.read(rubric, student, staging) or results.failed(
+            rubric, student, reason or 'the grading stopped without a result: %s'
+            % feedback.log_tail(os.path.join(staging, 'grader.txt'), 5))
     except SubmissionError as error:
-        shutil.rmtree(submission, ignore_errors=True)
-        return results.failed(rubric, student, str(error), seconds=time.monotonic() - started)
-    out = tempfile.mkdtemp(prefix='course-grader-', dir=work)
-    # A new name: the session makes it, open to the student's side (sticky).
-    scratch = os.path.join(tempfile.gettempdir(), 'course-student-%s' % uuid.uuid4().hex[:8])
-    # The session by its module, as ./grade.sh starts it (rosrun's look-up costs half a second).
-    argv = SESSION + ['--student-user', student_user, '--lab', rubric.lab, '--package',
-                      os.path.join(submission, package), '--out', out, '--scratch', scratch, '--student', student]
-    env = dict(os.environ, HOME=out, ROS_HOME=os.path.join(out, 'ros'))
-    log = os.path.join(out, 'grader.txt')
-    limit = wall_limit.of_rubric(rubric)
-    reason = None
-    # The descriptor of /proc handed down where there is none (Gradescope's chroot), so that the
-    # session can stop the student's processes between its steps (course_common.process_table).
-    handed_down = () if proc_fd() is None else (proc_fd(),)
-    with open(log, 'wb') as stream:
-        process = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=stream, stderr=subprocess.STDOUT, env=env,
-                                   start_new_session=True, preexec_fn=_limit_resources, pass_fds=handed_down)
-        try:
-            code = process.wait(limit)
-            if code != 0:
-                reason = 'the grading stopped with exit status %d: %s' % (code, feedback.log_tail(log, 5))
-        except subprocess.TimeoutExpired:
-            reason = 'the grading did not end within %d s and was stopped' % limit
-        finally:
-            with contextlib.suppress(ProcessLookupError):
-                os.killpg(process.pid, signal.SIGKILL)
-            process.wait()
-            uid = pwd.getpwnam(student_user).pw_uid
-            stop_user(uid)
-    result = results.read(rubric, student, out) or results.failed(
-        rubric, student, reason or 'the grading stopped without a result: %s' % feedback.log_tail(log, 5))
+        result = results.failed(rubric, student, str(error))
+    finally:
+        for path in (staging, submission):
+            shutil.rmtree(path, ignore_errors=True)
     result['seconds'] = time.monotonic() - started
-    for folder in (out, scratch, submission):
-        shutil.rmtree(folder, ignore_errors=True)
     return result
 
 

@@ -1,5 +1,5 @@
-"""The host side of the grader that runs no student code: the output folder and what comes back
-from a sandbox."""
+"""The host side of the grader that runs no student code: the output folder (grader) and what comes
+back from a sandbox (sandbox)."""
 import io
 import os
 import tarfile
@@ -7,7 +7,7 @@ import subprocess
 
 import pytest
 
-from course_grader import grader, rubric as rubrics
+from course_grader import grader, sandbox
 
 
 def test_out_folder_new_then_replaced_and_a_foreign_one_refused(tmp_path):
@@ -41,8 +41,8 @@ def test_only_regular_files_come_back_from_a_sandbox_within_the_size_limit(tmp_p
     (staging / 'huge.log').write_bytes(b'x' * 2000)
     os.symlink('/etc/passwd', str(staging / 'passwd.log'))
     (staging / 'sub').mkdir()
-    monkeypatch.setattr(grader, 'MAX_COPIED_BYTES', 1000)
-    grader.copy_output(str(staging), str(folder))
+    monkeypatch.setattr(sandbox, 'MAX_COPIED_BYTES', 1000)
+    sandbox.copy_output(str(staging), str(folder))
     assert os.listdir(str(folder)) == ['build.log']
 
 
@@ -60,20 +60,18 @@ def test_only_regular_files_of_the_trusted_sides_tar_stream_are_unpacked(tmp_pat
             archive.addfile(info, io.BytesIO(data))
     staging = tmp_path / 'staging'
     staging.mkdir()
-    grader.unpack_output(stream.getvalue(), str(staging))
+    sandbox.unpack_output(stream.getvalue(), str(staging))
     assert os.listdir(str(staging)) == ['result.json']
-    grader.unpack_output(b'not a tar stream', str(staging))   # a session that broke down: nothing more
+    sandbox.unpack_output(b'not a tar stream', str(staging))   # a session that broke down: nothing more
     assert not (tmp_path / 'escaped').exists()
 
 
 def test_the_steps_a_session_reports_reach_on_step_and_the_whole_output_its_log(tmp_path):
     steps = []
-    args = type('Args', (), {'out': str(tmp_path / 'out')})()
-    rubric = rubrics.load('my_turtle')
     session_output = io.BytesIO(b'grade_submission: built in 4.1 s\nroscore started\n'
                                 b'grade_submission: move_turtle.launch checked in 9.5 s\n')
     log = io.BytesIO()
-    grader.Grader(args, rubric, on_step=steps.append)._copy_steps(session_output, log)
+    sandbox.copy_steps(session_output, log, steps.append)
     assert steps == ['built in 4.1 s', 'move_turtle.launch checked in 9.5 s']
     assert log.getvalue() == session_output.getvalue()
 
@@ -84,6 +82,6 @@ def test_a_session_sending_more_than_the_limit_is_read_to_its_end_and_cut():
     os.close(writer)
     kept = bytearray()
     with os.fdopen(reader, 'rb') as pipe:
-        grader._read_at_most(pipe, kept, 1000)
+        sandbox.read_at_most(pipe, kept, 1000)
     assert sender.wait(10) == 0   # never blocked on a full pipe
     assert kept == b'\0' * 1000

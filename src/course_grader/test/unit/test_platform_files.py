@@ -9,7 +9,7 @@ import zipfile
 import pytest
 import yaml
 
-from course_grader import classroom, grader, platform_files, rubric as rubrics
+from course_grader import classroom, platform_files, rubric as rubrics, sandbox
 
 ACTIONS = {'actions/checkout', 'classroom-resources/autograding-grading-reporter'}
 
@@ -47,23 +47,23 @@ def test_the_reporter_reads_one_runner_per_criterion_from_the_grading_step(lab, 
     assert job['steps'].index(grade) == len(job['steps']) - 2
 
 
-def grader_docker_run(monkeypatch):
+def grader_docker_run(monkeypatch, tmp_path):
     """The `docker run` command ./grade.sh starts for one student (caught, not run)."""
     caught = []
 
     def popen(command, **_):
         caught.append(command)
         raise RuntimeError('caught')
-    monkeypatch.setattr(grader.subprocess, 'Popen', popen)
-    monkeypatch.setattr(grader.subprocess, 'run', lambda *a, **k: None)
-    args = grader.parse_args(['move_turtlebot3', 'x', '--image', 'IMAGE'])
+    monkeypatch.setattr(sandbox.subprocess, 'Popen', popen)
+    monkeypatch.setattr(sandbox.subprocess, 'run', lambda *a, **k: None)
+    grading = sandbox.Grading(rubrics.load('move_turtlebot3'), '/sub', 'pkg', 'alice', str(tmp_path))
     with pytest.raises(RuntimeError):
-        grader.Grader(args, rubrics.load('move_turtlebot3'))._run_in_container('/sub', 'pkg', 'alice', '/tmp')
+        sandbox.run(grading, sandbox.Options(image='IMAGE'))
     return caught[0]
 
 
 def test_the_grading_step_starts_its_container_as_grade_sh_does(monkeypatch, tmp_path):
-    command = grader_docker_run(monkeypatch)
+    command = grader_docker_run(monkeypatch, tmp_path)
     ours = platform_files.container_options()
     # ./grade.sh's options but its container's name and the mounts, in the same order.
     theirs = command[2:command.index('IMAGE')]
