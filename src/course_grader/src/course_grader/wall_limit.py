@@ -1,7 +1,9 @@
 """How long one grading session may last: the sum of what each of its steps may take, by the
-rubric's limits and the lab's own runs, plus a margin for the grader's own work. ./grade.sh and
-grade_platform stop a session beyond it, and then every criterion fails with that one reason: so it
-must never come before the steps' own limits, which give each run its own verdict (pure: no ROS)."""
+rubric's limits and the kinds of its lab's runs (the table RUNS in labs/<lab>.py), plus a margin for
+the grader's own work. ./grade.sh and grade_platform stop a session beyond it, and then every
+criterion fails with that one reason: so it must never come before the steps' own limits, which
+give each run its own verdict (pure: no ROS, but for of_rubric, which imports the lab's module)."""
+from course_grader.labs import lab_module
 
 # The grader's steps on the student's side whose limit is the grader's, not the rubric's: the
 # overlay's environment read after the build (session.build) and roslaunch's reading of the launch
@@ -16,16 +18,6 @@ RUN_MARGIN = 15
 
 NODES = 'nodes'        # the student's script or launch file: start_seconds, run_seconds, stop_seconds
 READING = 'reading'    # roslaunch's reading of the student's launch files: STEP_SECONDS
-
-# What each lab's run_checks runs after the build, in order (labs/<lab>.py).
-RUNS = {
-    # CHECKS: trajectory.py, laser_data.py, avoid_obstacle.py.
-    'move_turtlebot3': (NODES, NODES, NODES),
-    # move_turtle.launch read, then run; when it does not start the node, the node by rosrun.
-    'my_turtle': (READING, NODES, NODES),
-    # The six launch files read at once, then exercise1 to exercise4, exercise5 as square and as triangle.
-    'ros_exercises': (READING,) + (NODES,) * 6,
-}
 
 
 def run_seconds(run, limits):
@@ -43,5 +35,7 @@ def seconds(limits, runs):
 
 
 def of_rubric(rubric):
-    """The wall limit of a session grading with `rubric` (its limits, its lab's RUNS)."""
-    return seconds(rubric.limits, RUNS[rubric.lab])
+    """The wall limit of a session grading with `rubric`: its limits, and the kinds of each run of
+    its lab's table (RUNS)."""
+    lab = lab_module(rubric.lab)   # imported only here: it imports ROS
+    return seconds(rubric.limits, [kind for run in lab.RUNS for kind in run.kinds])

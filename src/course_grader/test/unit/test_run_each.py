@@ -1,8 +1,10 @@
 """The runs of a lab, each costing its own criteria only; with --only, the runs of that criterion only."""
+import re
 import types
 
 from course_checks.verdict import Verdict
-from course_grader.labs.common import run_each
+from course_grader.labs.common import LabRun, run_each, will_run
+from course_grader.wall_limit import NODES, READING
 
 
 def session(only=None, folder='/nonexistent', ran=None):
@@ -12,7 +14,7 @@ def session(only=None, folder='/nonexistent', ran=None):
                                  student_side=types.SimpleNamespace(stop_all=stop_all))
 
 
-def checks(ran):
+def runs(ran):
     def first(_):
         ran.append('first')
         return {'a': Verdict(True, 'seen a'), 'b': Verdict(True, 'seen b')}
@@ -20,38 +22,75 @@ def checks(ran):
     def second(_):
         ran.append('second')
         return {'c': Verdict(True, 'seen c')}
-    return [(first, 'first.launch', ['a', 'b']), (second, 'second.py', ['c'])]
+    return [LabRun('first.launch', first, {'a': (), 'b': ('rate',)}, (NODES,)),
+            LabRun('second.py', second, {'c': ()}, (NODES,))]
+
+
+def reading(ran):
+    def read(_):
+        ran.append('read')
+        return {}
+    return LabRun('all.launch', read, {}, (READING,))
 
 
 def test_every_run_without_only():
     ran = []
-    assert sorted(run_each(session(), checks(ran))) == ['a', 'b', 'c']
+    assert sorted(run_each(session(), runs(ran))) == ['a', 'b', 'c']
     assert ran == ['first', 'second']
 
 
 def test_every_process_of_the_students_side_is_stopped_after_each_run():
     ran = []
-    run_each(session(ran=ran), checks(ran))
+    run_each(session(ran=ran), runs(ran))
     assert ran == ['first', 'stopped', 'second', 'stopped']
 
 
 def test_only_runs_the_run_that_judges_that_criterion():
     ran = []
-    assert sorted(run_each(session(only='c'), checks(ran))) == ['c']
+    assert sorted(run_each(session(only='c'), runs(ran))) == ['c']
     assert ran == ['second']
 
 
 def test_only_a_criterion_of_no_run_runs_none():   # builds: the build is all there is to check
     ran = []
-    assert run_each(session(only='builds'), checks(ran)) == {}
+    assert run_each(session(only='builds'), runs(ran)) == {}
     assert ran == []
+
+
+def reported(capsys):
+    """The runs the session reported as checked (what the student's check lists)."""
+    return re.findall(r'^grade_submission: (\S+) checked in \d+\.\d s$', capsys.readouterr().out, re.M)
+
+
+def test_a_reading_runs_whatever_the_criterion_and_is_not_reported_as_a_run(capsys):
+    ran = []
+    assert sorted(run_each(session(only='c'), [reading(ran)] + runs(ran))) == ['c']
+    assert ran == ['read', 'second']
+    assert reported(capsys) == ['second.py']
+    run_each(session(), [reading(ran)] + runs(ran))
+    assert reported(capsys) == ['first.launch', 'second.py']
+
+
+def test_the_runs_that_will_run_are_those_run_each_runs():   # move_turtlebot3 prepares their simulators
+    ran = []
+    table = [reading(ran)] + runs(ran)
+    assert [run.name for run in will_run(session(only='b'), table)] == ['all.launch', 'first.launch']
+    assert will_run(session(), table) == table
+
+
+def test_each_check_gets_what_run_each_is_given():
+    given = []
+    run_each(session(), [LabRun('x.py', lambda _, simulators: given.append(simulators) or {}, {'x': ()}, (NODES,))],
+             simulators='the simulators')
+    assert given == ['the simulators']
 
 
 def test_a_run_that_breaks_down_costs_its_own_criteria(tmp_path):
     def broken(_):
         raise RuntimeError("can't start new thread")
     (tmp_path / 'first.log').write_text('starting\nforking\n')
-    outcomes = run_each(session(folder=str(tmp_path)), [(broken, 'first.launch', ['a', 'b'])] + checks([])[1:])
+    table = [LabRun('first.launch', broken, {'a': (), 'b': ()}, (NODES,))] + runs([])[1:]
+    outcomes = run_each(session(folder=str(tmp_path)), table)
     assert outcomes['c'].passed
     assert not outcomes['a'].passed and outcomes['a'].reason == outcomes['b'].reason
     assert outcomes['a'].reason.startswith("the run of first.launch broke down (RuntimeError: can't start new thread); "

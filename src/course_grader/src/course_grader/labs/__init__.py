@@ -1,7 +1,9 @@
-"""One module per lab: CRITERIA (the criterion ids it checks, each with the rubric settings its
-check reads), static_checks(session) (no ROS) and run_checks(session) (against the simulators, on
-the session's master), each returning {criterion id: Verdict}. A session imports only its own lab
-(the turtlesim labs' modules import roslaunch, a second of a session's start)."""
+"""One module per lab: its table RUNS (common.LabRun: each run after the build, with the criteria it
+decides and the rubric settings each reads, and what it takes of the wall limit) and
+STATIC_CRITERIA (those decided without a run); CRITERIA, the criterion ids it checks with the
+settings, derived from both; static_checks(session) (no ROS) and run_checks(session) (RUNS, against
+the simulators, on the session's master), each returning {criterion id: Verdict}. A session imports
+only its own lab (the turtlesim labs' modules import roslaunch, a second of a session's start)."""
 import importlib
 
 LABS = ('move_turtlebot3', 'my_turtle', 'ros_exercises')

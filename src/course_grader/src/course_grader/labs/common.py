@@ -1,12 +1,36 @@
-"""What the labs share: a student's node run with its output kept (bounded), stopped and explained,
-and each run costing its own criteria only."""
+"""What the labs share: the record of a lab's table of runs, a student's node run with its output
+kept (bounded), stopped and explained, and each run costing its own criteria only."""
 import errno
 import os
 import time
+from typing import Callable, NamedTuple
 
 from course_checks.robot import node_names
 from course_checks.verdict import Verdict
 from course_grader import feedback
+
+
+class LabRun(NamedTuple):
+    """One step of a lab after the build: a row of the lab's table RUNS."""
+    name: str          # the script or launch file it runs (its log is <name>.log)
+    check: Callable    # check(session) -> {criterion id: Verdict}
+    criteria: dict     # {criterion id: the rubric settings its check reads} of those it decides (a reading: none)
+    kinds: tuple       # what it takes of the wall limit: a wall_limit kind (NODES, READING) for each part
+
+
+def criteria_of(static, runs):
+    """A lab's CRITERIA, what rubric.check_against gets: {criterion id: settings its check reads} of
+    `static` (the criteria decided without a run) and of each of `runs`, in that order."""
+    criteria = dict(static)
+    for run in runs:
+        criteria.update(run.criteria)
+    return criteria
+
+
+def will_run(session, runs):
+    """The runs of `runs` that the session runs: with session.only, those that decide that
+    criterion, and the readings (they decide none: the runs after them use what was read)."""
+    return [run for run in runs if not session.only or not run.criteria or session.only in run.criteria]
 
 
 class StudentNode:
@@ -79,26 +103,25 @@ class StudentNode:
                                     self.stopped_cleanly, prints)
 
 
-def run_each(session, checks):
-    """Run each (check, script, criterion ids): a run that breaks down (a submission that took every
-    process or all memory of its sandbox, say) costs its own criteria only, with the reason. With
-    session.only, only the runs that judge that criterion."""
+def run_each(session, runs, **given):
+    """Run each of `runs` (LabRun; its check gets the session and `given`): a run that breaks down
+    (a submission that took every process or all memory of its sandbox, say) costs its own criteria
+    only, with the reason. With session.only, only the runs that judge that criterion (will_run)."""
     outcomes = {}
-    for check, script, criterion_ids in checks:
-        if session.only and session.only not in criterion_ids:
-            continue
+    for run in will_run(session, runs):
         started = time.monotonic()
         try:
-            outcomes.update(check(session))
-            print('grade_submission: %s checked in %.1f s' % (script, time.monotonic() - started), flush=True)
+            outcomes.update(run.check(session, **given))
+            if run.criteria:   # the runs, as the student's check lists them (a reading is part of those after it)
+                print('grade_submission: %s checked in %.1f s' % (run.name, time.monotonic() - started), flush=True)
         except Exception as error:   # noqa: B902 (whatever broke, the next checks still run)
-            tail = feedback.log_tail(session.log_path(os.path.splitext(script)[0] + '.log'), 3).splitlines()
+            tail = feedback.log_tail(session.log_path(os.path.splitext(run.name)[0] + '.log'), 3).splitlines()
             reason = ('the run of %s broke down (%s: %s); the last lines %s printed: %s' % (
-                script, type(error).__name__, str(error)[:200] or '-', script, ' | '.join(tail) or 'none'))
+                run.name, type(error).__name__, str(error)[:200] or '-', run.name, ' | '.join(tail) or 'none'))
             if "can't start new thread" in str(error) or getattr(error, 'errno', None) == errno.EAGAIN:
                 reason += ('. The sandbox ran out of processes: does the submission start processes '
                            'without end (a fork bomb)?')
-            for criterion_id in criterion_ids:
+            for criterion_id in run.criteria:
                 outcomes[criterion_id] = Verdict(False, reason)
         session.student_side.stop_all()   # nothing of this run's lives into the next
     return outcomes

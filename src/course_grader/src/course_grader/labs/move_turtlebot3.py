@@ -13,21 +13,11 @@ from course_checks.robot import SIMULATOR, RobotWatch, largest_move, node_names,
 from course_checks.verdict import Verdict
 from course_common.waiting import Deadline
 from course_grader import feedback
-from course_grader.labs.common import StudentNode, faked, run_each
+from course_grader.labs.common import LabRun, StudentNode, criteria_of, faked, run_each, will_run
+from course_grader.wall_limit import NODES
 from course_common.processes import together
 from course_common.waiting import poll_until
 
-SIMULATION = ('script', 'world', 'x_pos', 'y_pos', 'noise_stddev', 'noise_seed', 'real_time_factor')
-CRITERIA = {
-    'builds': (),
-    'executable': ('scripts',),
-    'trajectory_rate': ('script', 'world', 'x_pos', 'y_pos', 'noise_stddev', 'real_time_factor', 'linear',
-                        'angular', 'speed_tolerance', 'rate_hz', 'rate_tolerance'),
-    'trajectory_circle': ('radius_tolerance', 'periods', 'min_travel'),
-    'laser_data': SIMULATION + ('beams', 'blocks', 'turn_speed', 'print_window'),
-    'avoid_stops': SIMULATION + ('lock_step', 'min_drive', 'stopped_seconds', 'front_min', 'front_max'),
-    'avoid_stays': ('stay_seconds', 'max_creep'),
-}
 # What fake_tb3's world.launch gives the node beside a run's own settings.
 LAUNCH_DEFAULTS = {'cmd_vel_timeout': 0, 'clamp_speed': False, 'picture_png': '', 'robots': []}
 # Wall seconds at most for the messages of a run's last moments to be heard once it has stopped.
@@ -333,16 +323,34 @@ def check_avoid_obstacle(session, simulators):
         run.stop()
 
 
-CHECKS = [(check_trajectory, 'trajectory.py', ['trajectory_rate', 'trajectory_circle']),
-          (check_laser_data, 'laser_data.py', ['laser_data']),
-          (check_avoid_obstacle, 'avoid_obstacle.py', ['avoid_stops', 'avoid_stays'])]
+# Decided without a run: builds by the session's build, executable by static_checks.
+STATIC_CRITERIA = {
+    'builds': (),
+    'executable': ('scripts',),
+}
+# The settings of a run's fake_tb3, in the criterion its check starts the run with.
+SIMULATION = ('script', 'world', 'x_pos', 'y_pos', 'noise_stddev', 'noise_seed', 'real_time_factor')
+# The lab's runs after the build, in order: each script on fake_tb3 (its check gets the Simulators).
+RUNS = (
+    LabRun('trajectory.py', check_trajectory, {
+        'trajectory_rate': ('script', 'world', 'x_pos', 'y_pos', 'noise_stddev', 'real_time_factor', 'linear',
+                            'angular', 'speed_tolerance', 'rate_hz', 'rate_tolerance'),
+        'trajectory_circle': ('radius_tolerance', 'periods', 'min_travel'),
+    }, (NODES,)),
+    LabRun('laser_data.py', check_laser_data, {
+        'laser_data': SIMULATION + ('beams', 'blocks', 'turn_speed', 'print_window'),
+    }, (NODES,)),
+    LabRun('avoid_obstacle.py', check_avoid_obstacle, {
+        'avoid_stops': SIMULATION + ('lock_step', 'min_drive', 'stopped_seconds', 'front_min', 'front_max'),
+        'avoid_stays': ('stay_seconds', 'max_creep'),
+    }, (NODES,)),
+)
+CRITERIA = criteria_of(STATIC_CRITERIA, RUNS)
 
 
 def run_checks(session):
-    simulators = Simulators(session, [script for _, script, criterion_ids in CHECKS
-                                      if not session.only or session.only in criterion_ids])
+    simulators = Simulators(session, [run.name for run in will_run(session, RUNS)])
     try:
-        return run_each(session, [(functools.partial(check, simulators=simulators), script, criterion_ids)
-                                  for check, script, criterion_ids in CHECKS])
+        return run_each(session, RUNS, simulators=simulators)
     finally:
         simulators.stop()

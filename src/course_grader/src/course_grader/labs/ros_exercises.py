@@ -1,6 +1,7 @@
 """The lab report's exercises (seed 002): ros_exercises' launch files exercise1..5 on the course's
 turtlesim (started by the grader in place of the launch file's own, labs.turtlesim_runs), with the
 checks of course_checks that ros_exercises' own tests use."""
+import functools
 import re
 import threading
 import time
@@ -14,21 +15,11 @@ from course_checks import figures, rates, turtle
 from course_checks.verdict import Verdict
 from course_common.waiting import Deadline
 from course_common.timing import Pacer
-from course_grader.labs.common import run_each
+from course_grader.labs.common import LabRun, criteria_of, run_each
 from course_grader.labs.turtlesim_runs import SimulatedClock, TurtlesimLaunch, describe_launches
+from course_grader.wall_limit import NODES, READING
 
 NUMBER = r'(-?\d+\.\d+)'
-CRITERIA = {
-    'builds': (),
-    'publisher_rate': ('launch_file', 'rate', 'id_number', 'skipped', 'messages', 'tolerance', 'real_time_factor'),
-    'subscriber_prints': ('repeats',),
-    'listener_prints_pose': ('launch_file', 'linear', 'angular', 'until_x', 'real_time_factor'),
-    'circle': ('launch_file', 'start', 'radius', 'tolerance', 'turn_seconds', 'real_time_factor'),
-    'spawn_kill': ('launch_file', 'spawn', 'tolerance', 'real_time_factor'),
-    'clear': (),
-    'square': ('launch_file', 'spawn', 'side', 'speed', 'turn_speed', 'tolerance', 'real_time_factor'),
-    'triangle': ('launch_file', 'spawn', 'side', 'speed', 'turn_speed', 'tolerance', 'real_time_factor'),
-}
 
 
 def _printed(run, pattern):
@@ -303,15 +294,46 @@ def check_shape(session, shape):
         exercise.finish()
 
 
+def read_launches(session):
+    """Each launch file the lab runs, read at once: one run of roslaunch's loader for them all."""
+    describe_launches(session, _launches(session))
+    return {}
+
+
+# Decided without a run: builds by the session's build.
+STATIC_CRITERIA = {
+    'builds': (),
+}
+# The lab's steps after the build, in order: the six launch files read, then each run.
+RUNS = (
+    LabRun('exercise1-5.launch', read_launches, {}, (READING,)),
+    LabRun('exercise1.launch', check_publisher_subscriber, {
+        'publisher_rate': ('launch_file', 'rate', 'id_number', 'skipped', 'messages', 'tolerance',
+                           'real_time_factor'),
+        'subscriber_prints': ('repeats',),
+    }, (NODES,)),
+    LabRun('exercise2.launch', check_listener, {
+        'listener_prints_pose': ('launch_file', 'linear', 'angular', 'until_x', 'real_time_factor'),
+    }, (NODES,)),
+    LabRun('exercise3.launch', check_circle, {
+        'circle': ('launch_file', 'start', 'radius', 'tolerance', 'turn_seconds', 'real_time_factor'),
+    }, (NODES,)),
+    LabRun('exercise4.launch', check_spawn_kill, {
+        'spawn_kill': ('launch_file', 'spawn', 'tolerance', 'real_time_factor'),
+        'clear': (),
+    }, (NODES,)),
+    LabRun('exercise5_square.launch', functools.partial(check_shape, shape='square'), {
+        'square': ('launch_file', 'spawn', 'side', 'speed', 'turn_speed', 'tolerance', 'real_time_factor'),
+    }, (NODES,)),
+    LabRun('exercise5_triangle.launch', functools.partial(check_shape, shape='triangle'), {
+        'triangle': ('launch_file', 'spawn', 'side', 'speed', 'turn_speed', 'tolerance', 'real_time_factor'),
+    }, (NODES,)),
+)
+CRITERIA = criteria_of(STATIC_CRITERIA, RUNS)
+
+
 def run_checks(session):
-    describe_launches(session, _launches(session))   # one run of roslaunch's loader for them all
-    return run_each(session, [
-        (check_publisher_subscriber, 'exercise1.launch', ['publisher_rate', 'subscriber_prints']),
-        (check_listener, 'exercise2.launch', ['listener_prints_pose']),
-        (check_circle, 'exercise3.launch', ['circle']),
-        (check_spawn_kill, 'exercise4.launch', ['spawn_kill', 'clear']),
-        (lambda s: check_shape(s, 'square'), 'exercise5_square.launch', ['square']),
-        (lambda s: check_shape(s, 'triangle'), 'exercise5_triangle.launch', ['triangle'])])
+    return run_each(session, RUNS)
 
 
 def static_checks(session):
