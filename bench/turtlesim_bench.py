@@ -9,7 +9,8 @@ prints a Markdown table. Run it after `source tools/env.sh`:
     python3 bench/turtlesim_bench.py [--window SECONDS] [--sizes 1 100 500 2000] [--file-limit 1024]
 
 The CPU share is the node's user + system time (from /proc/<pid>/stat) over the measuring window,
-in percent of one core. Targets: 62.5 Hz, p99 gap <= 18 ms, CPU <= 3 %, 6 %, 35 %.
+in percent of one core. Targets: a pose every tick (turtlesim.world.TICK_SECONDS), p99 gap <= 18 ms,
+CPU <= 3 %, 6 %, 35 %.
 
 With `--before DEVEL` (the devel folder of another build of this workspace) it compares the two
 builds side by side instead: each build runs two nodes under one master, one with turtle1 alone
@@ -38,9 +39,10 @@ from course_testing.processes import build_environment
 from course_common.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn
+from turtlesim.world import TICK_SECONDS
 
 TARGET_CPU = {1: 3.0, 100: 6.0, 500: 35.0}
-TARGET_RATE = 62.5
+TARGET_RATE = 1 / TICK_SECONDS
 TARGET_P99_MS = 18.0
 
 
@@ -69,10 +71,10 @@ class PoseTimes:
 
 
 def sleep_loop_p99_lateness(seconds):
-    """p99 of how late a bare Python loop wakes up on a 16 ms grid: the machine's own jitter (ms)."""
+    """p99 of how late a bare Python loop wakes up on turtlesim's tick grid: the machine's own jitter (ms)."""
     lateness, next_tick = [], time.monotonic()
-    for _ in range(int(seconds / 0.016)):
-        next_tick += 0.016
+    for _ in range(int(seconds / TICK_SECONDS)):
+        next_tick += TICK_SECONDS
         time.sleep(max(0.0, next_tick - time.monotonic()))
         lateness.append(time.monotonic() - next_tick)
     lateness.sort()
@@ -238,7 +240,7 @@ def sizes_table(args, env, started):
           % (TARGET_RATE, TARGET_P99_MS, args.window, os.cpu_count(), os.getloadavg()[0]))
     print('Open-file limit of the node: soft %d, hard %d; %d files open with turtle1 alone.'
           % (soft, hard, files_at_start))
-    print('Machine jitter: a bare Python sleep loop on the same 16 ms grid wakes up to %.1f ms late (p99), '
+    print('Machine jitter: a bare Python sleep loop on the same tick grid wakes up to %.1f ms late (p99), '
           'which adds to every gap above.' % sleep_loop_p99_lateness(5.0))
 
 

@@ -1,5 +1,5 @@
 """Floods and bad input against turtlesim and fake_tb3: each keeps its rates (turtlesim's pose at
-62.5 Hz, fake_tb3's odom at 30 Hz and scan at 5 Hz), never publishes a NaN, and nothing crashes.
+every tick, fake_tb3's odom at 30 Hz and scan at 5 Hz), never publishes a NaN, and nothing crashes.
 One master and one simulator for all the tests of a simulator, as a long session would have."""
 import pytest
 

@@ -19,6 +19,7 @@ import zipfile
 import pytest
 import yaml
 
+from course_grader import sandbox
 from example_class import EXAMPLES, ROOT, expected, make_class
 
 IMAGE = os.environ.get('COURSE_GRADER_IMAGE')
@@ -226,8 +227,8 @@ def run_autograder(image, submission, tmp_path, before=''):
     started = time.monotonic()
     # Root, as Gradescope's harness; the memory and CPU docs/grading.md asks for, and a process limit
     # (Gradescope's own is not known; this machine is shared).
-    run = subprocess.run(['docker', 'run', '--rm', '--network', 'none', '--user', 'root', '--memory', '1536m',
-                          '--cpus', '1', '--pids-limit', '512',
+    run = subprocess.run(['docker', 'run', '--rm', '--network', 'none', '--user', 'root', '--memory', sandbox.MEMORY,
+                          '--cpus', str(sandbox.CPUS), '--pids-limit', str(sandbox.PROCESSES),
                           '-v', '%s:/autograder/submission:ro' % submission, '-v', '%s:/autograder/results' % results,
                           image, 'bash', '-c', before + 'exec /autograder/run_autograder'], stdout=subprocess.PIPE,
                          stderr=subprocess.STDOUT,

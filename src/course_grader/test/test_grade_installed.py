@@ -13,8 +13,8 @@ import rostest
 from example_class import ROOT, make_class, read_results
 
 # What grading the move_turtlebot3 lab needs from the workspace: the grader, its checks, the
-# simulators and the packages whose environment hooks every course shell has.
-INSTALLED = ['course_checks', 'course_common', 'course_environment', 'course_grader', 'course_testing', 'fake_tb3',
+# simulators and the packages whose environment hooks every course shell has (not the test helpers).
+INSTALLED = ['course_checks', 'course_common', 'course_environment', 'course_grader', 'fake_tb3',
              'ros_loopback', 'turtlesim']
 
 

@@ -18,7 +18,7 @@ from course_checks.launch import Launch
 from course_checks.robot import SIMULATOR, RobotWatch
 from course_checks.callers import sender
 from course_common.sim_record import ENVIRONMENT
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import wait_until
 
 # The forger: scans that see a wall 0.45 m ahead and a collision count of 0, "from /fake_tb3";

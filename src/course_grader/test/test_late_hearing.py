@@ -13,7 +13,7 @@ import rospy
 import rostest
 
 from course_checks.robot import RobotWatch
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import wait_until
 
 SCANS = 500

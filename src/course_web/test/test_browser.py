@@ -21,7 +21,7 @@ from std_srvs.srv import Empty, Trigger
 
 from course_testing.browser import save_pixels
 from course_common.processes import port_open, stop_process_group
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import poll_until, wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute

@@ -9,7 +9,7 @@ import rostest
 from geometry_msgs.msg import Twist
 from selenium.webdriver.common.keys import Keys
 
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import wait_until
 from turtlesim.msg import Pose
 from view_in_browser import ViewInBrowser

@@ -13,7 +13,7 @@ import rostest
 from nav_msgs.msg import Odometry
 
 from course_common.processes import stop_process_group
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import wait_until
 
 NAME = '/ctrl_c_fake_tb3'

@@ -18,7 +18,7 @@ from rosgraph_msgs.msg import Clock, Log
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import UInt32
 
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import measurement_window, wait_until
 from fake_tb3_testing import rosout_lines
 

@@ -17,7 +17,7 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 
 from course_common.processes import stop_process_group
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import measurement_window, wait_until
 
 # The wall's face is at x = 2.0 and the laser 0.032 m behind base_footprint: the front beam reads

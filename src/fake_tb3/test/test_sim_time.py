@@ -19,7 +19,7 @@ from sensor_msgs.msg import JointState, LaserScan
 from std_msgs.msg import String, UInt32
 from std_srvs.srv import Trigger
 
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import measurement_window, wait_until
 from fake_tb3_testing import rosout_lines, stamp_rate
 

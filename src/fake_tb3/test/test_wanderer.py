@@ -9,7 +9,8 @@ import rostest
 from nav_msgs.msg import Odometry
 from std_msgs.msg import UInt32
 
-from course_testing.recording import TopicRecorder, path_length
+from course_checks.figures import path_length
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import wait_until
 
 

@@ -9,6 +9,7 @@ from sensor_msgs.msg import LaserScan
 
 from course_checks import launch
 from course_checks.robot import RobotWatch
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import wait_until
 
 REPUBLISH_SECONDS = 0.5  # a lone node's scan sent again after this long without an answer
@@ -69,19 +70,18 @@ class LoneNode:
         self.launch = Launch('rosrun', 'move_turtlebot3', script,
                              '/scan:=/odd_scan', '/cmd_vel:=/odd_cmd_vel')
         self._publisher = rospy.Publisher('/odd_scan', LaserScan, queue_size=1)
-        self.commands = []
-        self._listener = rospy.Subscriber('/odd_cmd_vel', Twist, self.commands.append)
+        self.commands = TopicRecorder('/odd_cmd_vel', Twist)
         wait_until(lambda: self._publisher.get_num_connections() > 0
-                   and self._listener.get_num_connections() > 0,
+                   and self.commands.subscriber.get_num_connections() > 0,
                    timeout=30, what='%s to connect' % script)
 
     def answer_to(self, scan):
         """Publish one scan and return the (linear, angular) command the node answers with."""
-        count = len(self.commands)
+        count = self.commands.count()
         published = []
 
         def answered():
-            if len(self.commands) > count:
+            if self.commands.count() > count:
                 return True
             # (Again every half a second: the node's first answers can leave before its publisher
             # has taken in our fresh connection.)
@@ -91,13 +91,14 @@ class LoneNode:
             return False
 
         wait_until(answered, timeout=10, what='an answer to a scan')
-        return self.commands[-1].linear.x, self.commands[-1].angular.z
+        answer = self.commands.latest()
+        return answer.linear.x, answer.angular.z
 
     @property
     def output(self):
         return self.launch.output
 
     def stop(self):
-        self._listener.unregister()
+        self.commands.close()
         self._publisher.unregister()
         self.launch.stop()

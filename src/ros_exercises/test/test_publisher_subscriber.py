@@ -10,7 +10,7 @@ from std_msgs.msg import Int32
 from course_checks import rates
 from course_checks.rates import rate_of
 from course_testing.processes import run
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 
 from ros_exercises_testing import Command
 

@@ -7,7 +7,7 @@ import unittest
 import rospy
 import rostest
 
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim_testing import RosoutWatcher

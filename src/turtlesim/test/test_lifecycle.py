@@ -11,7 +11,7 @@ import rospy
 import rostest
 from PIL import Image as PilImage
 
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 from course_testing.screen import VirtualScreen
 from course_common.waiting import wait_until
 from turtlesim.msg import Pose

@@ -9,7 +9,7 @@ import rostest
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Clock
 
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import measurement_window
 from turtlesim.msg import Pose
 from turtlesim_testing import connected_publisher

@@ -8,14 +8,14 @@ import rospy
 import rostest
 
 from course_testing.processes import PtyProgram
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn, TeleportAbsolute
-from turtlesim_testing import moved, publishes_to, wait_until_still
+from turtlesim.world import TICK_SECONDS
+from turtlesim_testing import ONE_COMMAND_TICKS, moved, publishes_to, wait_until_still
 
 UP, DOWN, RIGHT, LEFT = '\x1b[A', '\x1b[B', '\x1b[C', '\x1b[D'
-ONE_KEY_TICKS = 63  # a single command lasts 1 s: 63 ticks of 16 ms
 TOLERANCE = 0.05  # one tick at 2 m/s is 0.032 m
 
 
@@ -48,22 +48,23 @@ class TeleopAndMimicTest(unittest.TestCase):
         self.assertIn('Reading from keyboard', teleop.output)
 
         (t1, t2), (t1_after, t2_after) = self.press(teleop, UP)
-        self.assertAlmostEqual(t1_after.x - t1.x, 2.0 * ONE_KEY_TICKS * 0.016, delta=TOLERANCE)
+        self.assertAlmostEqual(t1_after.x - t1.x, 2.0 * ONE_COMMAND_TICKS * TICK_SECONDS, delta=TOLERANCE)
         self.assertAlmostEqual(t1_after.y, t1.y, places=4)
-        self.assertAlmostEqual(t2_after.x - t2.x, 2.0 * ONE_KEY_TICKS * 0.016, delta=0.15)  # mimic lags a tick or two
+        # mimic lags a tick or two
+        self.assertAlmostEqual(t2_after.x - t2.x, 2.0 * ONE_COMMAND_TICKS * TICK_SECONDS, delta=0.15)
 
         (t1, t2), (t1_after, t2_after) = self.press(teleop, LEFT)
-        self.assertAlmostEqual(t1_after.theta - t1.theta, 2.0 * ONE_KEY_TICKS * 0.016, delta=0.04)
-        self.assertAlmostEqual(t2_after.theta - t2.theta, 2.0 * ONE_KEY_TICKS * 0.016, delta=0.1)
+        self.assertAlmostEqual(t1_after.theta - t1.theta, 2.0 * ONE_COMMAND_TICKS * TICK_SECONDS, delta=0.04)
+        self.assertAlmostEqual(t2_after.theta - t2.theta, 2.0 * ONE_COMMAND_TICKS * TICK_SECONDS, delta=0.1)
 
         (t1, _), (t1_after, _) = self.press(teleop, RIGHT)
-        self.assertAlmostEqual(t1_after.theta - t1.theta, -2.0 * ONE_KEY_TICKS * 0.016, delta=0.04)
+        self.assertAlmostEqual(t1_after.theta - t1.theta, -2.0 * ONE_COMMAND_TICKS * TICK_SECONDS, delta=0.04)
 
         (t1, t2), (t1_after, t2_after) = self.press(teleop, DOWN)
-        self.assertAlmostEqual(t1_after.x - t1.x, -2.0 * ONE_KEY_TICKS * 0.016, delta=TOLERANCE)
+        self.assertAlmostEqual(t1_after.x - t1.x, -2.0 * ONE_COMMAND_TICKS * TICK_SECONDS, delta=TOLERANCE)
         # turtle1 backed up, but a pose carries speed only: turtle2 went forward along its heading
         forward = (t2_after.x - t2.x) * math.cos(t2.theta) + (t2_after.y - t2.y) * math.sin(t2.theta)
-        self.assertAlmostEqual(forward, 2.0 * ONE_KEY_TICKS * 0.016, delta=0.15)
+        self.assertAlmostEqual(forward, 2.0 * ONE_COMMAND_TICKS * TICK_SECONDS, delta=0.15)
 
         teleop.type('x')  # not a key the teleop knows: nothing happens, it keeps running
         teleop.type('q')
@@ -77,7 +78,7 @@ class TeleopAndMimicTest(unittest.TestCase):
         teleop = self.start_teleop()
         (t1, _), (t1_after, _) = self.press(teleop, UP)
         distance = math.hypot(t1_after.x - t1.x, t1_after.y - t1.y)
-        self.assertAlmostEqual(distance, 0.5 * ONE_KEY_TICKS * 0.016, delta=0.02)
+        self.assertAlmostEqual(distance, 0.5 * ONE_COMMAND_TICKS * TICK_SECONDS, delta=0.02)
 
     def test_teleop_without_a_terminal_says_so_and_fails(self):
         result = subprocess.run(['rosrun', 'turtlesim', 'turtle_teleop_key'], stdin=subprocess.DEVNULL,

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""turtlesim on a simulated clock (/use_sim_time) at 5x: /clock at the factor, 62.5 poses per
-simulated second, one command moving the turtle for one simulated second, the original's log
+"""turtlesim on a simulated clock (/use_sim_time) at 5x: /clock at the factor, a pose every
+tick of simulated time, one command moving the turtle for one simulated second, the original's log
 lines and services, and a node's rospy.Rate following the clock."""
 import time
 import unittest
@@ -11,11 +11,12 @@ from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
 
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import measurement_window, wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn, TeleportAbsolute
-from turtlesim_testing import RosoutWatcher, connected_publisher, moved, twist
+from turtlesim.world import TICK_SECONDS
+from turtlesim_testing import ONE_COMMAND_TICKS, RosoutWatcher, connected_publisher, moved, twist
 
 REAL_TIME_FACTOR = 5.0
 
@@ -46,19 +47,19 @@ class SimTimeTest(unittest.TestCase):
         self.assertAlmostEqual(rospy.get_time() - sim, 2.0, delta=0.1)
         self.assertLess(time.monotonic() - wall, 2.0 / REAL_TIME_FACTOR * 2.5)
 
-    def test_poses_at_62_5_hz_of_simulated_time(self):
+    def test_a_pose_every_tick_of_simulated_time(self):
         start = self.pose.count()
         first_sim = self.sim_now()
         wait_until(lambda: self.sim_now() >= first_sim + 4.0, 20.0, '4 simulated seconds')
         count, simulated = self.pose.count() - start, self.sim_now() - first_sim
-        self.assertAlmostEqual(count / simulated, 62.5, delta=62.5 * 0.03)
+        self.assertAlmostEqual(count / simulated, 1 / TICK_SECONDS, delta=0.03 / TICK_SECONDS)
 
     def test_one_command_moves_the_turtle_for_one_simulated_second(self):
         rospy.ServiceProxy('/turtle1/teleport_absolute', TeleportAbsolute)(2.0, 5.0, 0.0)
         wait_until(lambda: abs(self.pose.next_message().x - 2.0) < 1e-6, 5.0, 'the teleport')
         cmd_vel = connected_publisher('/turtle1/cmd_vel', Twist)
         stopped = moved(lambda: cmd_vel.publish(twist(1.0)), self.pose)
-        self.assertAlmostEqual(stopped.x - 2.0, 1.008, delta=0.02)  # 63 ticks of 16 ms at 1 m/s
+        self.assertAlmostEqual(stopped.x - 2.0, ONE_COMMAND_TICKS * TICK_SECONDS, delta=0.02)  # at 1 m/s
         self.assertAlmostEqual(stopped.y, 5.0, places=5)
 
     def test_log_lines_and_services_are_the_originals(self):

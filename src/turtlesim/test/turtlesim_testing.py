@@ -1,4 +1,5 @@
 """What the turtlesim rostests share: watching topics, rosout lines and the master's view of the graph."""
+import math
 import xmlrpc.client
 
 import rosgraph
@@ -6,9 +7,12 @@ import rospy
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Log
 
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import wait_until
+from turtlesim.world import COMMAND_TIMEOUT, TICK_SECONDS
 
+# The ticks one velocity command moves a turtle: its timeout's worth, the last tick before it expires.
+ONE_COMMAND_TICKS = math.ceil(COMMAND_TIMEOUT / TICK_SECONDS)
 LEVEL_NAMES = {Log.DEBUG: 'DEBUG', Log.INFO: 'INFO', Log.WARN: 'WARN', Log.ERROR: 'ERROR', Log.FATAL: 'FATAL'}
 
 

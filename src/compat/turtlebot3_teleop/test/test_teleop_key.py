@@ -2,7 +2,6 @@
 """The TurtleBot3 keyboard teleop typed into through a pty, as a student would use it."""
 import signal
 import subprocess
-import threading
 import time
 import unittest
 
@@ -12,6 +11,7 @@ import rostest
 from geometry_msgs.msg import Twist
 
 from course_testing.processes import PtyProgram
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import measurement_window, wait_until
 
 NODE = '/turtlebot3_teleop_keyboard'
@@ -25,23 +25,17 @@ def node_names():
 class TeleopKeyTest(unittest.TestCase):
 
     def setUp(self):
-        self.lock = threading.Lock()
-        self.received = []  # (wall time, linear, angular)
-        self.subscriber = rospy.Subscriber('cmd_vel', Twist, self.on_cmd_vel)
+        self.cmd_vel = TopicRecorder('cmd_vel', Twist)
         self.teleop = None
 
     def tearDown(self):
-        self.subscriber.unregister()
+        self.cmd_vel.close()
         if self.teleop is not None:
             self.teleop.stop()
 
-    def on_cmd_vel(self, message):
-        with self.lock:
-            self.received.append((time.monotonic(), message.linear.x, message.angular.z))
-
     def messages(self):
-        with self.lock:
-            return list(self.received)
+        """(linear, angular) of every cmd_vel message."""
+        return [(twist.linear.x, twist.angular.z) for twist in self.cmd_vel.messages()]
 
     def launch(self, model):
         self.teleop = PtyProgram(['roslaunch', 'turtlebot3_teleop', 'turtlebot3_teleop_key.launch',
@@ -52,7 +46,7 @@ class TeleopKeyTest(unittest.TestCase):
     def wait_for_command(self, linear, angular, timeout=10):
         return wait_until(
             lambda: any(abs(l - linear) < 1e-6 and abs(a - angular) < 1e-6
-                        for _, l, a in self.messages()),
+                        for l, a in self.messages()),
             timeout, what='cmd_vel linear %.3f angular %.3f' % (linear, angular))
 
     def test_keys_ramp_cmd_vel_and_ctrl_c_stops_the_robot(self):
@@ -62,9 +56,9 @@ class TeleopKeyTest(unittest.TestCase):
         self.assertIn('1.82 rad/s', self.teleop.output)
 
         # about every 0.1 s, counted over a window while nothing is typed
-        start_count, start = len(self.messages()), time.monotonic()
+        start_count, start = self.cmd_vel.count(), time.monotonic()
         end = measurement_window(2.0, start)
-        rate = (len(self.messages()) - start_count) / (end - start)
+        rate = (self.cmd_vel.count() - start_count) / (end - start)
         self.assertGreater(rate, 7.0)
         self.assertLess(rate, 13.0)
 
@@ -73,8 +67,8 @@ class TeleopKeyTest(unittest.TestCase):
         self.teleop.type('aa')
         self.teleop.wait_for_output('linear vel 0.04\t angular vel 0.20', timeout=10)
         self.wait_for_command(0.04, 0.2)
-        linears = [l for _, l, _ in self.messages()]
-        angulars = [a for _, _, a in self.messages()]
+        linears = [l for l, _ in self.messages()]
+        angulars = [a for _, a in self.messages()]
         # the ramp: no jump bigger than 0.005 m/s or 0.05 rad/s between consecutive messages
         self.assertLessEqual(max(abs(b - a) for a, b in zip(linears, linears[1:])), 0.005 + 1e-9)
         self.assertLessEqual(max(abs(b - a) for a, b in zip(angulars, angulars[1:])), 0.05 + 1e-9)
@@ -88,8 +82,7 @@ class TeleopKeyTest(unittest.TestCase):
         self.wait_for_command(0.03, -0.1)
         self.teleop.type('\x03')
         wait_until(lambda: NODE not in node_names(), timeout=10, what='the teleop node to exit')
-        _, last_linear, last_angular = self.messages()[-1]
-        self.assertEqual((last_linear, last_angular), (0.0, 0.0))
+        self.assertEqual(self.messages()[-1], (0.0, 0.0))
         self.assertNotIn('Traceback', self.teleop.output)
 
     def test_banner_again_after_20_keys_and_unknown_model_uses_burger_limits(self):
@@ -108,7 +101,7 @@ class TeleopKeyTest(unittest.TestCase):
         self.wait_for_command(0.02, -0.1)
         self.teleop.process.send_signal(signal.SIGHUP)  # what closing the terminal window sends
         self.assertEqual(self.teleop.process.wait(10), 0)
-        wait_until(lambda: self.messages()[-1][1:] == (0.0, 0.0), timeout=5,
+        wait_until(lambda: self.messages()[-1] == (0.0, 0.0), timeout=5,
                    what='a zero Twist after the hang-up')
         self.assertNotIn('Traceback', self.teleop.read_available())
 

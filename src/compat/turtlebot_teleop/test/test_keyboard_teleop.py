@@ -9,27 +9,34 @@ import rostest
 from geometry_msgs.msg import Twist
 
 from course_testing.processes import PtyProgram
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import wait_until
 
 TELEOP_TOPIC = '/cmd_vel_mux/input/teleop'
 LAUNCH = ['roslaunch', 'turtlebot_teleop', 'keyboard_teleop.launch']
-# (linear.x, angular.z) of every Twist the teleop sent, rounded to the printed precision.
-sent = []
-
-
-def record(twist):
-    sent.append((round(twist.linear.x, 6), round(twist.angular.z, 6)))
 
 
 class TeleopInTerminal(unittest.TestCase):
     """Runs `command` in a pseudo-terminal and waits until it is ready for keys."""
     command = LAUNCH
 
+    @classmethod
+    def setUpClass(cls):
+        cls.twists = TopicRecorder(TELEOP_TOPIC, Twist)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.twists.close()
+
+    def sent(self, start=0):
+        """(linear.x, angular.z) of every Twist the teleop sent from the start-th on, rounded to the
+        printed precision."""
+        return [(round(twist.linear.x, 6), round(twist.angular.z, 6)) for twist in self.twists.messages(start)]
+
     def setUp(self):
         self.teleop = PtyProgram(self.command)
         self.teleop.wait_for_output('currently:\tspeed 0.2\tturn 1', timeout=30)
-        first = len(sent)
-        wait_until(lambda: len(sent) > first, 10, 'a Twist on %s' % TELEOP_TOPIC)
+        self.twists.next_message(10)
 
     def tearDown(self):
         self.teleop.stop()
@@ -39,31 +46,31 @@ class TeleopInTerminal(unittest.TestCase):
         def sent_after_press():
             self.teleop.type(key)
             self.teleop.read_available(0.05)
-            return sent[-1] == velocities
+            return self.sent()[-1] == velocities
         wait_until(sent_after_press, 10, what)
 
 
 class KeyboardTeleopTest(TeleopInTerminal):
 
     def test_move_keys_ramp_to_the_default_speeds_and_k_stops(self):
-        self.assertEqual(sent[-1], (0.0, 0.0), 'the teleop moves before any key')
-        start = len(sent)
+        self.assertEqual(self.sent()[-1], (0.0, 0.0), 'the teleop moves before any key')
+        start = self.twists.count()
         self.hold('i', (0.2, 0.0), 'i held to reach 0.2 m/s forward')
-        ramp = [linear for linear, _ in sent[start:]]
+        ramp = [linear for linear, _ in self.sent(start)]
         steps = [after - before for before, after in zip(ramp, ramp[1:])]
         self.assertTrue(all(-1e-6 < step < 0.02 + 1e-6 for step in steps),
                         'forward speed did not ramp in steps of 0.02 m/s: %s' % ramp)
         self.teleop.type('k')
-        wait_until(lambda: sent[-1] == (0.0, 0.0), 2, 'k to stop at once')
+        wait_until(lambda: self.sent()[-1] == (0.0, 0.0), 2, 'k to stop at once')
         self.hold('j', (0.0, 1.0), 'j held to turn left at 1 rad/s')
         self.hold(',', (-0.2, 0.0), ', held to go backwards at 0.2 m/s')
         self.teleop.type(' ')
-        wait_until(lambda: sent[-1] == (0.0, 0.0), 2, 'space to stop at once')
+        wait_until(lambda: self.sent()[-1] == (0.0, 0.0), 2, 'space to stop at once')
 
     def test_letting_go_stops_smoothly(self):
         self.hold('o', (0.2, -1.0), 'o held to reach forward-right')
-        wait_until(lambda: sent[-1] == (0.0, 0.0), 5, 'the robot to stop after the key is released')
-        stop = sent[-25:]
+        wait_until(lambda: self.sent()[-1] == (0.0, 0.0), 5, 'the robot to stop after the key is released')
+        stop = self.sent()[-25:]
         self.assertIn((0.18, -0.9), stop, 'no smooth slow-down step in %s' % stop)
 
     def test_speed_keys_print_the_new_speeds(self):
@@ -77,7 +84,7 @@ class KeyboardTeleopTest(TeleopInTerminal):
         self.hold('i', (0.2, 0.0), 'i held to reach 0.2 m/s forward')
         self.teleop.type('\x03')
         wait_until(lambda: self.teleop.process.poll() is not None, 20, 'roslaunch to end after Ctrl-C')
-        self.assertEqual(sent[-1], (0.0, 0.0), 'the last command after Ctrl-C is not a stop')
+        self.assertEqual(self.sent()[-1], (0.0, 0.0), 'the last command after Ctrl-C is not a stop')
 
 
 class ClosedTerminalTest(TeleopInTerminal):
@@ -89,7 +96,7 @@ class ClosedTerminalTest(TeleopInTerminal):
         self.hold('i', (0.2, 0.0), 'i held to reach 0.2 m/s forward')
         self.teleop.process.send_signal(signal.SIGHUP)
         self.assertEqual(self.teleop.process.wait(10), 0)
-        self.assertEqual(sent[-1], (0.0, 0.0), 'the last command after the hang-up is not a stop')
+        self.assertEqual(self.sent()[-1], (0.0, 0.0), 'the last command after the hang-up is not a stop')
         self.assertNotIn('Traceback', self.teleop.read_available())
 
 
@@ -117,5 +124,4 @@ class NoTerminalTest(unittest.TestCase):
 
 if __name__ == '__main__':
     rospy.init_node('keyboard_teleop_test')
-    rospy.Subscriber(TELEOP_TOPIC, Twist, record)
     rostest.rosrun('turtlebot_teleop', 'keyboard_teleop', '__main__')

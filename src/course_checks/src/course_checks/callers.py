@@ -8,7 +8,7 @@ from std_msgs.msg import String
 from course_common import sim_record_ros
 from course_common.service_calls import parse
 from course_checks.verdict import Verdict
-from course_testing.recording import TopicRecorder
+from course_common.topic_recorder import TopicRecorder
 
 
 sim_record_ros.install()   # from now on each message received carries its sender
@@ -31,10 +31,6 @@ class ServiceCallWatch:
 
     def _told(self):
         return [message for message in self._recorder.messages() if sender(message) == self.simulator]
-
-    def heard(self):
-        """The simulator has told its calls (none, at least) since the watch began."""
-        return bool(self._told())
 
     def calls(self):
         """[(service, caller)] as the simulator told them last."""

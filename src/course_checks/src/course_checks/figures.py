@@ -1,4 +1,4 @@
-"""Geometry the ros_exercises tests measure with: circles and polygons from poses and from the canvas.
+"""Geometry the checks measure with: path lengths, circles and polygons from poses and from the canvas.
 
 Pure numpy and PIL (no rospy), so that test/unit/ checks it in milliseconds.
 """
@@ -13,6 +13,11 @@ WORLD_SIZE = 11.088889        # metres: turtlesim's world is a square of this si
 PIXELS_PER_METRE = 45.0
 PEN_COLOUR = (179, 184, 255)  # turtlesim's default pen
 BACKGROUND_COLOUR = (69, 86, 255)
+
+
+def path_length(points):
+    """Length in metres of the polyline through (x, y) points."""
+    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
 
 
 def polygon(x, y, theta, side, corners):

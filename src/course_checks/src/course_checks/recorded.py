@@ -91,7 +91,7 @@ class Records:
 
 class RecordedTopic:
     """One topic as the simulator recorded what it published on it, with the calls the checks make
-    of a course_testing.recording.TopicRecorder: (wall time the simulator sent it, message)."""
+    of a course_common.topic_recorder.TopicRecorder: (wall time the simulator sent it, message)."""
 
     def __init__(self, records, topic, message_class):
         self.records = records

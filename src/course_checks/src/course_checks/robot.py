@@ -20,7 +20,8 @@ from std_msgs.msg import UInt32
 
 from course_checks.recorded import PublisherLook, RecordedTopic, Records
 from course_checks.callers import ServiceCallWatch, sender
-from course_testing.recording import TopicRecorder, path_length
+from course_checks.figures import path_length
+from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import poll_until
 
 SIMULATOR = '/fake_tb3'

@@ -5,13 +5,13 @@ import math
 
 import numpy
 from turtlesim.msg import Pose
+from turtlesim.world import TICK_SECONDS
 
 from course_checks import figures, printed_poses, callers
 from course_checks.verdict import Verdict, decimal
-from course_testing.recording import TopicRecorder, path_length
+from course_common.topic_recorder import TopicRecorder
 
-POSE_RATE_HZ = 62.5  # turtlesim publishes the pose at every 16 ms tick
-TICK_SECONDS = 0.016
+POSE_RATE_HZ = 1.0 / TICK_SECONDS   # turtlesim publishes the pose at every tick
 JITTER = 0.25       # seconds a pose may arrive late on a busy machine (jumps)
 # When a measurement starts (not grading choices: those are the caller's, from the rubric):
 MOVING_M = 0.01      # over the last ten poses heard: the turtle moves
@@ -35,12 +35,12 @@ def pose_array(recorder):
 
 def travelled(samples):
     """Distance travelled along recorded (time, pose) entries, in metres."""
-    return path_length([(pose.x, pose.y) for _, pose in samples])
+    return figures.path_length([(pose.x, pose.y) for _, pose in samples])
 
 
 def per_tick(samples):
     """(distance, heading change) of one turtlesim tick, the median over consecutive poses: the
-    turtle's speed in turtlesim's own time (a fixed 16 ms a tick), which a busy machine that delays
+    turtle's speed in turtlesim's own time (a fixed TICK_SECONDS a tick), which a busy machine that delays
     the ticks does not change, and a pose lost on the way does not skew."""
     steps = sorted(math.hypot(b.x - a.x, b.y - a.y) for (_, a), (_, b) in zip(samples, samples[1:]))
     turns = sorted(math.remainder(b.theta - a.theta, 2 * math.pi) for (_, a), (_, b) in zip(samples, samples[1:]))
@@ -98,8 +98,8 @@ def turned(samples):
 
 def jumps(samples, real_time_factor=1.0):
     """Moves between two heard poses that no velocity explains: (from (x, y), to (x, y)) of each.
-    turtlesim moves a turtle at most |linear_velocity| * 16 ms a tick; between two poses heard
-    dt wall seconds apart it had about dt / 16 ms ticks (JITTER more, for a pose a busy machine
+    turtlesim moves a turtle at most |linear_velocity| * TICK_SECONDS a tick; between two poses heard
+    dt wall seconds apart it had about dt / TICK_SECONDS ticks (JITTER more, for a pose a busy machine
     delayed), real_time_factor times as many on a simulated clock that fast. Farther than that (or
     at all, standing still at both ends): a teleport or /reset."""
     found = []

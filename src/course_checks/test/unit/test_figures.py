@@ -8,6 +8,13 @@ from PIL import Image, ImageDraw
 from course_checks import figures
 
 
+def test_path_length_adds_the_sides_of_the_polyline():
+    assert figures.path_length([(0, 0), (3, 4), (3, 0)]) == pytest.approx(9.0)
+    assert figures.path_length([(0, 0), (2, 0), (2, 2), (0, 2), (0, 0)]) == pytest.approx(8.0)
+    assert figures.path_length([(1, 1)]) == 0.0
+    assert figures.path_length([]) == 0.0
+
+
 def test_polygon_square_and_triangle_from_one_one():
     square = figures.polygon(1, 1, 0, 3, 4)
     numpy.testing.assert_allclose(square, [(1, 1), (4, 1), (4, 4), (1, 4)], atol=1e-12)

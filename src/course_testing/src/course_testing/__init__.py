@@ -1,2 +1,2 @@
 """Running the course's programs from outside and watching them: for tests, benchmarks and the tour.
-Only `recording` imports rospy."""
+Only the network scenarios import rospy."""

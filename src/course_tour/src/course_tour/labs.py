@@ -14,7 +14,8 @@ from turtlesim.msg import Pose
 
 from course_checks import driving
 from course_testing.processes import PtyProgram
-from course_testing.recording import TopicRecorder, path_length
+from course_checks.figures import path_length
+from course_common.topic_recorder import TopicRecorder
 from course_testing.screen import VirtualScreen, can_make_screens, red_pixels
 from course_common.waiting import wait_until
 

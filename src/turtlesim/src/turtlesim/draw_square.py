@@ -1,7 +1,8 @@
 """draw_square: reset turtlesim, then drive turtle1 around 2 m squares, as the original demo does.
 
-A 16 ms timer runs a four-state machine on turtle1's pose: forward at 1 m/s until 2 m ahead,
-stop, turn at 0.4 rad/s by a quarter turn, stop, and again. Logs each new goal.
+A timer at turtlesim's tick (turtlesim.world.TICK_SECONDS, as in the original) runs a four-state
+machine on turtle1's pose: forward at 1 m/s until 2 m ahead, stop, turn at 0.4 rad/s by a quarter
+turn, stop, and again. Logs each new goal.
 """
 import math
 
@@ -10,6 +11,7 @@ from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty
 
 from turtlesim.msg import Pose
+from turtlesim.world import TICK_SECONDS
 
 PI = 3.141592  # the demo's own constant
 SIDE = 2.0  # metres
@@ -90,5 +92,5 @@ def main():
     driver = SquareDriver()
     # Subscribed after the reset has been applied, so no pose from before it sets the first goal.
     rospy.Subscriber('turtle1/pose', Pose, driver.on_pose, queue_size=1)
-    rospy.Timer(rospy.Duration(0.016), driver.step)
+    rospy.Timer(rospy.Duration(TICK_SECONDS), driver.step)
     rospy.spin()

@@ -9,7 +9,7 @@ The layer is made of:
 - turtlesim.canvas_outputs: ~save_canvas, ~canvas and the PNG at shutdown; turtlesim.window: the
   window. They read pictures through TurtlesimNode.snapshot() and never change the world.
 
-Threads: one tick thread owns the world and steps it every 16 ms. ROS callbacks (cmd_vel, service
+Threads: one tick thread owns the world and steps it at each tick. ROS callbacks (cmd_vel, service
 calls) never touch the world: they submit a request (course_common.request_queue) that the tick
 thread runs between two ticks, and a service call waits for its request and returns its result.
 Creating and removing a turtle's topics and services (slow calls to the master) happens in the

@@ -18,7 +18,7 @@ message per tick, sent when something changed:
 With nobody subscribed it costs one attribute test per drawn line and one connection count per tick;
 with a viewer, a tick where one turtle of a hundred moves sends that one. The tick thread writes the
 message to each viewer's socket itself, without waiting (course_common.batched_writes): no writer
-thread to wake 62.5 times a second (the turtles' poses and colours are written the same way, and
+thread to wake at every tick (the turtles' poses and colours are written the same way, and
 after_tick() sends them too).
 """
 import base64

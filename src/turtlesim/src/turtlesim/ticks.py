@@ -1,8 +1,9 @@
-"""When turtlesim ticks: every 16 ms of wall time, as the original, or, with /use_sim_time, every
-16 ms of a simulated clock that turtlesim itself publishes on /clock and runs `~real_time_factor`
-times as fast as the wall clock (so that graders and checks can run the turtles faster than real
-time; nodes on simulated time, rospy's and roscpp's Rate included, follow it). With ~lock_step as
-well, each tick of that clock also waits for a node's answer (a grader's closed-loop runs).
+"""When turtlesim ticks: every TICK_SECONDS (turtlesim.world) of wall time, as the original, or, with
+/use_sim_time, every TICK_SECONDS of a simulated clock that turtlesim itself publishes on /clock and
+runs `~real_time_factor` times as fast as the wall clock (so that graders and checks can run the
+turtles faster than real time; nodes on simulated time, rospy's and roscpp's Rate included, follow
+it). With ~lock_step as well, each tick of that clock also waits for a node's answer (a grader's
+closed-loop runs).
 """
 import time
 

@@ -4,7 +4,7 @@ Numbers and order of operations are those of ROS 1 turtlesim (0.10), so that pos
 original to float precision. Positions are kept as the original keeps them, in the widget's frame
 (x right, y DOWN from the top edge, metres); poses are reported with y up from the bottom edge.
 
-The caller drives it: one `tick(now)` per 16 ms with the wall-clock time `now` in seconds, and
+The caller drives it: one `tick(now)` per TICK_SECONDS with the wall-clock time `now` in seconds, and
 requests (velocity commands, teleports, spawn/kill/clear/reset) between ticks. Errors in requests
 raise TurtlesimError, whose text is what the user should read; log lines go to `log`, an object
 with info() and warning() (a logging.Logger will do).
@@ -20,6 +20,8 @@ from turtlesim.canvas import Canvas
 PX_PER_METER = 45
 WORLD_SIZE = (500 - 1) / PX_PER_METER  # 11.088889 m, both width and height
 PI = 3.14159265  # the original's constant, not math.pi: it decides where theta wraps
+# The original's fixed step (16 ms, 62.5 ticks a second): each tick moves every turtle by its velocity
+# times this and publishes its pose. Written here only: the rest of the course imports it.
 TICK_SECONDS = 0.016
 COMMAND_TIMEOUT = 1.0
 DEFAULT_BACKGROUND = (69, 86, 255)
@@ -223,7 +225,7 @@ class World:
 
     # --- the update loop ---
     def tick(self, now):
-        """One 16 ms step of every turtle, in name order.
+        """One step (TICK_SECONDS) of every turtle, in name order.
 
         A settled turtle only senses the colour under it, and only when the canvas changed since it
         last did; so while the canvas stays as every settled turtle last sensed it, only the active

@@ -73,7 +73,7 @@ def test_one_command_moves_63_ticks_then_the_turtle_stops(world, clock):
     world.command_velocity('turtle1', 1.0, 0.0, 0.0, clock.now)
     clock.run(world, 200)
     # ticks at 0, 16, ..., 992 ms after the command move; at 1008 ms the command has expired
-    assert_pose(world, CENTRE + 63 * 0.016, CENTRE, 0.0)
+    assert_pose(world, CENTRE + 63 * TICK_SECONDS, CENTRE, 0.0)
     assert world.turtle('turtle1').linear_velocity == 0.0
 
 
@@ -82,12 +82,13 @@ def test_a_fresh_command_keeps_the_turtle_moving(world, clock):
         world.command_velocity('turtle1', 0.5, 0.0, 0.0, clock.now)
         clock.run(world, 50)
     clock.run(world, 100)
-    assert_pose(world, CENTRE + (100 + 63) * 0.5 * 0.016, CENTRE, 0.0)
+    assert_pose(world, CENTRE + (100 + 63) * 0.5 * TICK_SECONDS, CENTRE, 0.0)
 
 
 def test_arc_matches_the_closed_form_sum(world, clock):
-    """vx = 1, wz = 1: theta_k = k*a with a = 0.016; x, y sum cos/sin of the NEW theta of each tick."""
-    ticks, step = 50, 0.016
+    """vx = 1, wz = 1: theta_k = k*a with a = TICK_SECONDS; x, y sum cos/sin of the NEW theta of each tick
+    (worked out by hand below with the original's 16 ms: this pins TICK_SECONDS to it)."""
+    ticks, step = 50, TICK_SECONDS
     world.command_velocity('turtle1', 1.0, 0.0, 1.0, clock.now)
     clock.run(world, ticks)
     # sum_{k=1..n} cos(k a) = sin(n a / 2) cos((n + 1) a / 2) / sin(a / 2), the same with sin for y
@@ -103,8 +104,8 @@ def test_sideways_velocity_uses_the_heading(world, clock):
     world.teleport_absolute('turtle1', 3.0, 4.0, PI / 2)
     world.command_velocity('turtle1', 0.0, 2.0, 0.0, clock.now)
     clock.run(world, 10)
-    # heading north, +vy (to the left) moves west: x -= 2 * 0.016 per tick
-    assert_pose(world, 3.0 - 10 * 0.032, 4.0, PI / 2)
+    # heading north, +vy (to the left) moves west: x -= 2 m/s * TICK_SECONDS per tick
+    assert_pose(world, 3.0 - 10 * 2.0 * TICK_SECONDS, 4.0, PI / 2)
 
 
 def test_backwards_reports_positive_linear_velocity(world, clock):

@@ -12,6 +12,7 @@ import time
 from course_testing.network import faults
 from course_testing.network.rosnet import now, project_environment, start_master, start_probe
 from course_testing.network.scenarios import ODOM_FIELDS, POSE_FIELDS, TURTLESIM
+from turtlesim.world import TICK_SECONDS
 
 HOST_A_ADDRESS = '10.200.0.1'
 HOST_B_ADDRESS = '10.200.0.2'
@@ -115,8 +116,8 @@ def turtlesim_across(processes, hosts):
     processes.start('turtlesim', TURTLESIM, env_a, netns=hosts.a)
     probe = start_probe(processes, 'pose', env_a, '/turtle1/pose', POSE_FIELDS, netns=hosts.a)
     circle = processes.start('circle', ['rosrun', 'ros_exercises', 'circle'], env_b, netns=hosts.b)
-    # turtlesim: 1.0 s without a command, then the next 16 ms tick publishes the stopped pose.
-    return RemoteControl(probe, circle, faults.circling, faults.stopped, 1.0 + 2 * 0.016 + 0.05)
+    # turtlesim: 1.0 s without a command, then the next tick publishes the stopped pose.
+    return RemoteControl(probe, circle, faults.circling, faults.stopped, 1.0 + 2 * TICK_SECONDS + 0.05)
 
 
 def fake_tb3_across(processes, hosts):

@@ -22,11 +22,12 @@ from course_testing.network.rosnet import (HERE, PYTHON, listening_sockets, node
 from course_common.process_table import descendants
 from course_common.processes import free_port
 from course_common.waiting import wait_until
+from turtlesim.world import TICK_SECONDS
 
-TURTLESIM_POSE_HZ = 62.5
+TURTLESIM_POSE_HZ = 1.0 / TICK_SECONDS   # a pose every tick
 FAKE_TB3_ODOM_HZ = 30.0
 FAKE_TB3_SCAN_HZ = 5.0
-RATE_TOLERANCE = 0.05  # relative: 62.5 Hz +- 3.1 Hz
+RATE_TOLERANCE = 0.05  # relative
 FLOOD_RATE = 10000
 TWIST_WIRE_BYTES = 4 + 6 * 8  # length prefix, six float64
 TURTLESIM = ['rosrun', 'turtlesim', 'turtlesim_node']

@@ -3,14 +3,8 @@ import threading
 import pytest
 from std_msgs.msg import Int32
 
-from course_testing.recording import TopicRecorder, path_length
-
-
-def test_path_length_adds_the_sides_of_the_polyline():
-    assert path_length([(0, 0), (3, 4), (3, 0)]) == pytest.approx(9.0)
-    assert path_length([(0, 0), (2, 0), (2, 2), (0, 2), (0, 0)]) == pytest.approx(8.0)
-    assert path_length([(1, 1)]) == 0.0
-    assert path_length([]) == 0.0
+from course_common import topic_recorder
+from course_common.topic_recorder import TopicRecorder
 
 
 def arrive(recorder, *numbers):
@@ -38,7 +32,19 @@ def test_the_recorder_keeps_every_message_in_order_with_its_arrival(recorder):
     assert recorder.latest().data == 3
     assert [message.data for _, message in recorder.arrived_since(arrivals[1])] == [2, 3]
     recorder.clear()
-    assert recorder.count() == 0
+    assert recorder.count() == 0 and recorder.latest() is None
+
+
+def test_past_its_bound_the_recorder_drops_the_older_half_and_counts_on(recorder, monkeypatch):
+    monkeypatch.setattr(topic_recorder, 'MAX_MESSAGES', 4)
+    arrive(recorder, 1, 2, 3, 4, 5)
+    assert recorder.count() == 5
+    assert [message.data for message in recorder.messages()] == [3, 4, 5]
+    assert [message.data for message in recorder.messages(3)] == [4, 5]
+    assert [message.data for message in recorder.messages(1)] == [3, 4, 5]
+    recorder.clear()
+    arrive(recorder, 6)
+    assert recorder.count() == 1 and [message.data for message in recorder.messages()] == [6]
 
 
 def test_waiting_for_messages_names_the_topic_when_they_do_not_come(recorder):

@@ -1,5 +1,4 @@
 """The one way to record a topic: every message with the time it arrived, and waits on what came."""
-import math
 import threading
 import time
 
@@ -7,33 +6,42 @@ import rospy
 
 from course_common.waiting import wait_until
 
+MAX_MESSAGES = 100000   # kept in memory at most: a topic flooded without end stays within it
+QUEUE_SIZE = 1000       # messages rospy holds for the recorder while its thread waits
+
 
 class TopicRecorder:
-    """Every message of one topic, with the time.monotonic() it arrived, for a test, a benchmark or
-    the tour to wait on and to measure afterwards."""
+    """The messages of one topic, each with the time.monotonic() it arrived, for the checks and the
+    tests to wait on and to measure afterwards. Past MAX_MESSAGES the older half is dropped;
+    messages are numbered from the first that arrived all the same."""
 
-    def __init__(self, topic, message_type, queue_size=1000):
+    def __init__(self, topic, message_type):
         self._lock = threading.Lock()
         self._entries = []  # (arrival time.monotonic(), message)
-        self.subscriber = rospy.Subscriber(topic, message_type, self._keep, queue_size=queue_size)
+        self._dropped = 0   # how many of the first messages are no longer kept
+        self.subscriber = rospy.Subscriber(topic, message_type, self._keep, queue_size=QUEUE_SIZE)
 
     def _keep(self, message):
         with self._lock:
             self._entries.append((time.monotonic(), message))
+            if len(self._entries) > MAX_MESSAGES:
+                half = len(self._entries) // 2
+                del self._entries[:half]
+                self._dropped += half
 
     def count(self):
+        """How many messages have arrived."""
         with self._lock:
-            return len(self._entries)
+            return self._dropped + len(self._entries)
 
     def entries(self, start=0):
-        """(arrival time, message) of the messages from the start-th on."""
+        """(arrival time, message) of the messages from the start-th on (of those kept)."""
         with self._lock:
-            return self._entries[start:]
+            return self._entries[max(0, start - self._dropped):]
 
     def messages(self, start=0):
-        """The messages from the start-th on."""
-        with self._lock:
-            return [message for _, message in self._entries[start:]]
+        """The messages from the start-th on (of those kept)."""
+        return [message for _, message in self.entries(start)]
 
     def latest(self):
         """The newest message, or None before the first."""
@@ -51,8 +59,10 @@ class TopicRecorder:
         return (len(arrivals) - 1) / (arrivals[-1] - arrivals[0]) if len(arrivals) > 1 else 0.0
 
     def clear(self):
+        """Forget every message: the next one is the first."""
         with self._lock:
             self._entries.clear()
+            self._dropped = 0
 
     def wait_for_count(self, count, timeout=30.0):
         """Wait until `count` messages have arrived in all."""
@@ -83,9 +93,5 @@ class TopicRecorder:
         return self.entries(first)
 
     def close(self):
+        """Unsubscribe: nothing more is recorded."""
         self.subscriber.unregister()
-
-
-def path_length(points):
-    """Length in metres of the polyline through (x, y) points."""
-    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
