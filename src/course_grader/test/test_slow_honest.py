@@ -13,7 +13,8 @@ import unittest
 import rostest
 import yaml
 
-from course_grader import rubric as rubrics, wall_limit
+from course_grader import rubric as rubrics
+from course_grader.labs import wall_limit_of
 from example_class import make_class
 
 LIMITS = {'build_seconds': 30, 'run_seconds': 14, 'start_seconds': 6, 'stop_seconds': 4}
@@ -74,7 +75,7 @@ class SlowHonestTest(unittest.TestCase):
                 result = json.load(stream)
             with open(os.path.join(out, 'slow_but_honest', 'grader.txt')) as stream:
                 print(stream.read())
-            print('graded in %.0f s; wall limit %d s' % (result['seconds'], wall_limit.of_rubric(rubrics.load(rubric))))
+            print('graded in %.0f s; wall limit %d s' % (result['seconds'], wall_limit_of(rubrics.load(rubric))))
         self.assertIsNone(result.get('error'))
         self.assertEqual(result['score'], result['max_score'], [(c['id'], c['reason']) for c in result['criteria']])
         # Each run ran its course: its node was killed after stop_seconds, and said so.

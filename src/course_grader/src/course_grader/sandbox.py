@@ -28,7 +28,8 @@ from typing import Callable, Optional
 from course_common.process_table import proc_fd, stop_marked, stop_user
 from course_common.processes import stop_process_group
 from course_common.waiting import poll_until
-from course_grader import feedback, wall_limit
+from course_grader import feedback
+from course_grader.labs import wall_limit_of
 from course_grader.submission import ascii_name
 
 # The session, by its module: rosrun's look-up costs half a second.
@@ -198,7 +199,7 @@ def _run_session(argv, grading, options, stop, **popen_args):
     """The session started with `argv`: its log (standard error) into staging/grader.txt, each step it
     reports to options.on_step as it comes, the tar stream it sends on standard output unpacked into
     staging. stop(process) ends it, whatever happened. Returns why there is no result, or None."""
-    limit = wall_limit.of_rubric(grading.rubric)
+    limit = wall_limit_of(grading.rubric)
     log = os.path.join(grading.staging, 'grader.txt')
     sent = bytearray()
     with open(log, 'wb') as stream:

@@ -2,8 +2,7 @@
 rubric's limits and the kinds of its lab's runs (the table RUNS in labs/<lab>.py), plus a margin for
 the grader's own work. ./grade.sh and grade_platform stop a session beyond it, and then every
 criterion fails with that one reason: so it must never come before the steps' own limits, which
-give each run its own verdict (pure: no ROS, but for of_rubric, which imports the lab's module)."""
-from course_grader.labs import lab_module
+give each run its own verdict (pure: no ROS; labs.wall_limit_of gives it a lab's runs)."""
 
 # The grader's steps on the student's side whose limit is the grader's, not the rubric's: the
 # overlay's environment read after the build (session.build) and roslaunch's reading of the launch
@@ -32,10 +31,3 @@ def seconds(limits, runs):
     the build, the overlay's environment read, each run, and SESSION_MARGIN."""
     return (SESSION_MARGIN + limits['build_seconds'] + STEP_SECONDS
             + sum(run_seconds(run, limits) for run in runs))
-
-
-def of_rubric(rubric):
-    """The wall limit of a session grading with `rubric`: its limits, and the kinds of each run of
-    its lab's table (RUNS)."""
-    lab = lab_module(rubric.lab)   # imported only here: it imports ROS
-    return seconds(rubric.limits, [kind for run in lab.RUNS for kind in run.kinds])

@@ -5,6 +5,7 @@ import re
 import pytest
 
 from course_grader import labs, rubric as rubrics, wall_limit
+from course_grader.labs import wall_limit_of
 from course_grader.wall_limit import NODES, READING
 
 ROOT = os.path.join(os.path.dirname(__file__), '..', '..', '..', '..')
@@ -26,7 +27,7 @@ def steps_at_their_limits(rubric):
 @pytest.mark.parametrize('lab, seconds', [('move_turtlebot3', 630), ('my_turtle', 670), ('ros_exercises', 930)])
 def test_the_limit_covers_every_step_at_its_limit_with_the_margins_stated(lab, seconds):
     rubric = rubrics.load(lab)
-    assert wall_limit.of_rubric(rubric) == seconds
+    assert wall_limit_of(rubric) == seconds
     assert seconds - steps_at_their_limits(rubric) == (wall_limit.SESSION_MARGIN
                                                        + kinds(lab).count(NODES) * wall_limit.RUN_MARGIN)
 
@@ -41,7 +42,7 @@ def test_each_limit_counts_once_for_each_step_that_has_it():
 
 
 def test_classroom_and_the_docs_give_more_time_than_any_lab_takes():
-    longest = max(wall_limit.of_rubric(rubrics.load(lab)) for lab in rubrics.labs())
+    longest = max(wall_limit_of(rubrics.load(lab)) for lab in rubrics.labs())
     with open(os.path.join(ROOT, 'src', 'course_grader', 'platforms', 'classroom.yml.in')) as stream:
         job_minutes = int(re.search(r'timeout-minutes: (\d+)', stream.read()).group(1))
     assert longest < job_minutes * 60
@@ -50,4 +51,4 @@ def test_classroom_and_the_docs_give_more_time_than_any_lab_takes():
     gradescope_minutes = int(re.search(r'a timeout of (\d+) minutes', docs).group(1))
     assert longest < gradescope_minutes * 60
     for lab in rubrics.labs():
-        assert '%d s for `%s`' % (wall_limit.of_rubric(rubrics.load(lab)), lab) in docs
+        assert '%d s for `%s`' % (wall_limit_of(rubrics.load(lab)), lab) in docs
