@@ -14,7 +14,7 @@ PACKAGES = {
                   {'node', 'window', 'teleop_key', 'draw_square', 'mimic', 'scene_topic',
                    'ticks', 'canvas_outputs'}),
     'fake_tb3': ('src/fake_tb3/src/fake_tb3', {'node', 'turtlebot3_drive_node'}),
-    'course_web': ('src/course_web/src/course_web', {'ros_view', 'follow_master'}),
+    'course_web': ('src/course_web/src/course_web', {'ros_view', 'follow_master', 'replay'}),
 }
 # Run in a fresh interpreter: a finder first on sys.meta_path refuses every ROS module.
 IMPORT_WITHOUT_ROS = r'''

@@ -2,7 +2,10 @@
 and sentence (examples/grading/<lab>/expected.yaml), the hostile one included, archives, and a
 second grading into the same folder. Run by tools/grade-test.sh (CI, after the Docker test): not
 part of ./test.sh, which never runs the hostile examples."""
+import csv
 import io
+import itertools
+import json
 import os
 import subprocess
 import tarfile
@@ -85,6 +88,18 @@ def test_example_class_in_containers(lab, tmp_path):
             assert 'cannot create log directory' not in stream.read(), name
     assert os.path.isfile(os.path.join(out, 'report.html'))
     assert sorted(os.listdir(os.path.join(out, 'junit'))) == sorted(s + '.xml' for s in students)
+    # sim compared the class in containers of the image (the host may have no sim: Debian 13).
+    with open(os.path.join(out, 'similarity.json'), encoding='utf-8') as stream:
+        similar = json.load(stream)
+    assert (similar['error'], similar['image']) == (None, os.environ['COURSE_GRADER_IMAGE'])
+    assert 'not isolated' not in result.stdout
+    if lab == 'move_turtlebot3':
+        # Every student made by a patch of the model shares into_the_wall's changed line (each
+        # patch repeats it); no one else shares anything beyond the given material.
+        patched = sorted(s for s in students if os.path.isfile(os.path.join(EXAMPLES, lab, s + '.patch')))
+        with open(os.path.join(out, 'similarity.csv'), encoding='utf-8') as stream:
+            pairs = sorted((row['student_a'], row['student_b']) for row in csv.DictReader(stream))
+        assert len(patched) >= 3 and pairs == list(itertools.combinations(patched, 2))
     # Nothing left running, nothing written where the hostile one tried to write.
     assert grader_containers() - before == set()
     for parent, _, names in os.walk(ROOT):
@@ -116,7 +131,8 @@ def test_archives_and_grading_again_into_the_same_folder(archives, tmp_path):
     assert result.returncode == 0, result.stdout
     rows, _ = read_results(out)
     assert sorted(rows) == ['traversal']
-    assert sorted(os.listdir(out)) == ['.course_grader', 'grades.csv', 'junit', 'report.html', 'traversal']
+    assert sorted(os.listdir(out)) == ['.course_grader', 'grades.csv', 'junit', 'report.html', 'similarity.csv',
+                                       'similarity.json', 'traversal']
     assert os.listdir(os.path.join(out, 'junit')) == ['traversal.xml']
 
 

@@ -63,6 +63,37 @@ TRUSTED = {'move_turtlebot3': ['model', 'slides_as_printed', 'cmake_error', 'hos
            'ros_exercises': ['slides_as_printed']}
 
 
+# The runs each lab keeps as a bag, and topics each bag must hold with at least one message
+# (course_grader.bags); a submission that does not build has none.
+BAGS = {'move_turtlebot3': {name: ['/odom', '/scan', '/collisions', '/fake_tb3/run']
+                            for name in ('trajectory', 'laser_data', 'avoid_obstacle')},
+        'my_turtle': {'move_turtle': ['/turtle1/pose', '/turtle1/cmd_vel', '/turtlesim_node/canvas',
+                                      '/turtlesim_node/turtles']},
+        # exercise1.launch declares no turtlesim: no simulator, no bag.
+        'ros_exercises': dict({'exercise%d' % n: ['/turtle1/pose', '/turtlesim/canvas', '/turtlesim/turtles']
+                               for n in (2, 3)}, exercise4=['/robotics/pose', '/turtlesim/service_calls'],
+                              **{'exercise5_' + shape: ['/robotics/pose', '/robotics/cmd_vel']
+                                 for shape in ('square', 'triangle')})}
+
+
+def kept_runs(folder):
+    """{run: {topic: message count}} of each bag in a student's folder, read as `rosbag info` reads
+    it, and the runs with marks beside their bag."""
+    import rosbag
+    runs, marked = {}, set()
+    for name in sorted(os.listdir(folder)):
+        if name.endswith('.bag'):
+            assert os.path.getsize(os.path.join(folder, name)) < 2 * 2 ** 20, name   # bounded (bags.MAX_MESSAGES)
+            with rosbag.Bag(os.path.join(folder, name)) as bag:
+                runs[name[:-4]] = {topic: info.message_count
+                                   for topic, info in bag.get_type_and_topic_info().topics.items()}
+        elif name.endswith('.marks.json'):
+            with open(os.path.join(folder, name)) as stream:
+                assert all(set(mark) == {'t', 'what', 'criterion'} for mark in json.load(stream))
+            marked.add(name[:-len('.marks.json')])
+    return runs, marked
+
+
 def tagged_processes(tag):
     """The command lines of the processes whose environment carries tag (all that a command given
     it started)."""
@@ -88,6 +119,16 @@ class GradeExamplesTest(unittest.TestCase):
                 rows, details = read_results(out)
                 self.assertEqual(sorted(rows), sorted(students))
                 self.assertEqual(mismatches(lab, rows, details, students), [])
+                # Each run kept as a bag of the simulator's topics, the moments judged beside it.
+                for student in students:
+                    runs, marked = kept_runs(os.path.join(out, details[student]['folder']))
+                    built = next(c['passed'] for c in details[student]['criteria'] if c['id'] == 'builds')
+                    wanted = BAGS[lab] if built else {}
+                    self.assertEqual(sorted(runs), sorted(wanted), student)
+                    for run, topics in wanted.items():
+                        self.assertEqual([topic for topic in topics if not runs[run].get(topic)], [],
+                                         '%s %s: %s' % (student, run, runs[run]))
+                    self.assertLessEqual(marked, set(runs), student)
                 # roscore, fake_tb3, turtlesim, the students' nodes: all gone (roslaunch's nodes
                 # run in sessions of their own, which no process group reaches).
                 self.assertEqual(tagged_processes(tag), [])

@@ -14,8 +14,8 @@ from example_class import ROOT, make_class, read_results
 
 # What grading the move_turtlebot3 lab needs from the workspace: the grader, its checks, the
 # simulators and the packages whose environment hooks every course shell has (not the test helpers).
-INSTALLED = ['course_checks', 'course_common', 'course_environment', 'course_grader', 'fake_tb3',
-             'ros_loopback', 'turtlesim']
+INSTALLED = ['course_checks', 'course_common', 'course_environment', 'course_grader', 'course_web', 'fake_tb3',
+             'ros_loopback', 'turtlebot3_teleop', 'turtlesim']
 
 
 class GradeAsInstalledTest(unittest.TestCase):

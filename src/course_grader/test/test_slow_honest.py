@@ -17,8 +17,8 @@ from course_grader import rubric as rubrics
 from course_grader.labs import wall_limit_of
 from example_class import make_class
 
-LIMITS = {'build_seconds': 30, 'run_seconds': 14, 'start_seconds': 6, 'stop_seconds': 4}
-BUILD_SLEEP = 15   # s of the build's own; catkin_make takes the rest (10 s on a busy machine)
+LIMITS = {'build_seconds': 50, 'run_seconds': 14, 'start_seconds': 6, 'stop_seconds': 4}
+BUILD_SLEEP = 20   # s of the build's own; catkin_make takes the rest (10 s, 25 s beside a whole suite)
 START_SLEEP = 3    # s before each node starts
 # Put after `import rospy` in each script: a slow start, and Ctrl-C ignored once the node runs
 # (rospy sets its own handler in init_node), so that only the grader's kill stops it.

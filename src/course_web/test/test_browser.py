@@ -25,6 +25,7 @@ from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import poll_until, wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute
+from turtlesim.world import TICK_SECONDS
 from view_in_browser import TS_BACKGROUND, ViewInBrowser, near_colour, ts_pixel
 
 RED = np.array([255, 0, 0])
@@ -78,7 +79,7 @@ class BrowserTest(ViewInBrowser):
         self.press(Keys.ARROW_UP)  # turtle_teleop_key: 2 m/s for 1 s, along +x
         wait_until(lambda: self.pose.latest().x > start.x + 0.5, 20, 'the arrow key to move turtle1', poll=0.02)
         end = self.still_turtle()
-        self.assertAlmostEqual(end.x - start.x, 2.0 * 63 * 0.016, delta=0.1)
+        self.assertAlmostEqual(end.x - start.x, 2.0 * 63 * TICK_SECONDS, delta=0.1)
         self.assertAlmostEqual(end.y, start.y, places=3)
         self.wait_page_shows_turtle_at(end)
         pixels = self.canvas('turtlesim')

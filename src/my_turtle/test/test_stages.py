@@ -18,7 +18,7 @@ FORWARD_SPEED_MPS = 0.5
 SPEED_TOLERANCE = 0.02  # relative
 POSITION_TOLERANCE = 0.011  # metres: a printed x or y (2 decimals) against the pose turtlesim published
 START = 5.544445  # turtle1 spawns in the middle of the 11.09 m square
-WINDOW_S = 1.0  # about 62 poses: their median tick step is exact (turtlesim moves a turtle by a fixed 16 ms a tick)
+WINDOW_S = 1.0  # about 62 poses: their median tick step is exact (turtlesim moves a turtle by a fixed TICK_SECONDS a tick)
 
 
 class StagesTest(unittest.TestCase):

@@ -12,7 +12,9 @@ that enters it can hand down /proc opened as a folder, its descriptor's number i
 """
 import functools
 import os
+import select
 import signal
+import subprocess
 import sys
 import time
 import uuid
@@ -141,13 +143,64 @@ def stop_marked(mark):
     return stop_processes(lambda: marked_processes(mark))
 
 
-def stop_user(uid):
-    """SIGKILL every process of the user `uid` (the student's side in a sandbox); returns how many.
-    Where there is no process table, says so on standard error (the grading's log) and stops none:
-    the grading goes on, but what the student's side left running lives on."""
+def stop_user(uid, reaper=None):
+    """SIGKILL every process of the user `uid` (the student's side in a sandbox): all at once by the
+    user's `reaper` (a UserReaper) when there is one, then each one the process table still names;
+    returns how many the table named. Where there is no process table, says so on standard error
+    (the grading's log) and stops none but the reaper's: the grading goes on, but what the
+    student's side left running may live on."""
+    if reaper is not None:
+        reaper.kill_all()
     try:
         return stop_processes(lambda: user_processes(uid))
     except NoProcessTable as error:
         print('process_table: the processes of user %d cannot be stopped: %s. Whatever they started '
               '(a daemon of the build) goes on running.' % (uid, error), file=sys.stderr, flush=True)
         return 0
+
+
+# The reaper's program: it drops root for good, its real and saved ids `nobody`'s and its effective
+# user id the student's, then kills every process of that user (kill(-1): one system call, which no
+# fork can race) each time a byte comes, until none is left, and answers with a byte.
+REAPER = r"""
+import os, signal, sys
+os.setgroups([])
+os.setresgid(NOBODY, NOBODY, NOBODY)
+os.setresuid(NOBODY, UID, NOBODY)
+while sys.stdin.buffer.read(1):
+    for _ in range(1000):
+        try:
+            os.kill(-1, signal.SIGKILL)
+        except ProcessLookupError:
+            break
+    sys.stdout.buffer.write(b'.')
+    sys.stdout.flush()
+"""
+NOBODY = 65534
+
+
+class UserReaper:
+    """Kills every process of the user `uid` at once, even a fork bomb that holds every process its
+    sandbox allows (then no program could start to stop it) and that scanning /proc would never
+    catch up with (a process that forks and leaves). Started before the user has any process, by
+    root (with the capability to change user ids): a process of `uid` may be signalled only by it,
+    and may neither signal nor trace the reaper (whose real and saved user is nobody)."""
+
+    def __init__(self, uid):
+        program = REAPER.replace('NOBODY', str(NOBODY)).replace('UID', str(uid))
+        self.process = subprocess.Popen([sys.executable, '-c', program], stdin=subprocess.PIPE,
+                                        stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, start_new_session=True)
+
+    def kill_all(self, timeout=30.0):
+        """True once every process of the user was killed (the reaper answered within `timeout`)."""
+        try:
+            self.process.stdin.write(b'k')
+            self.process.stdin.flush()
+        except OSError:
+            return False   # the reaper has gone
+        ready, _, _ = select.select([self.process.stdout], [], [], timeout)
+        return bool(ready) and self.process.stdout.read(1) == b'.'
+
+    def close(self):
+        self.process.kill()
+        self.process.wait()

@@ -8,6 +8,18 @@ open (mode 600, in the trusted side's folder); the judge reads it while the run 
 node publishes on the simulator's topics never reaches it, whatever name the node gives itself.
 Pure: no ROS (course_common.sim_record_ros connects it to a node).
 
+The entries (payloads: a message's bytes, or a JSON event's fields):
+- fake_tb3: `pose` (PREFIXpose, struct '<5d': x, y, yaw, linear, angular, at each odometry),
+  `scan` (PREFIXscan: the LaserScan as sent, but for the header's sequence number), `command`
+  {robot, linear, angular, sender, nodes} as applied, `collisions` {robot, count} at each change,
+  `service_call` {service, caller};
+- turtlesim: `/TURTLE/pose` (its pose topic's resolved name: the turtlesim/Pose bytes, every tick),
+  `turtles` {names} when they change, `command` {turtle, linear, angular, sender, nodes} as heard,
+  `service_call` {service, caller}; and what a replay needs to redraw the trails as turtlesim drew
+  them, at the tick they apply in: `pen` {turtle, r, g, b, width, off} at each set_pen, `clear`
+  {background} at the first tick and at each /clear and /reset (course_grader.bags makes a rosbag
+  of each run from these).
+
 Also here: the user id that owns the other end of a TCP connection on this machine, as the kernel
 tells it (/proc/net/tcp): who sent a command, without believing what the sender says of itself."""
 import ipaddress

@@ -7,7 +7,7 @@ import sys
 import tempfile
 import time
 
-from course_grader import rubric as rubrics
+from course_grader import results, rubric as rubrics
 from course_grader.grader import Grader
 from course_grader.sandbox import Options
 from course_grader.submission import package_name, terminal_text
@@ -57,9 +57,15 @@ def find_student_package(lab, path):
     return found
 
 
-def print_result(result, only=None):
+def print_result(result, only=None, due=None, everything=False, now=None):
+    """Each criterion the student may see (results.shown_to_student: `due` is when after_due_date
+    ones are shown) with its points, reason and hints; the others as one line saying they are
+    hidden. With everything, all of them in full (the teacher's log)."""
     for criterion in result['criteria']:
         if only and criterion['id'] != only:
+            continue
+        if not (everything or results.shown_to_student(criterion, due, now)):
+            print('---- %-22s %s: %s' % (criterion['id'], criterion['title'], results.HIDDEN[criterion['visibility']]))
             continue
         print('%s %-22s %g / %g  %s' % ('PASS' if criterion['passed'] else 'FAIL', criterion['id'],
                                         criterion['points'], criterion['max_points'], criterion['title']))
@@ -69,6 +75,15 @@ def print_result(result, only=None):
             print('    hint: %s' % terminal_text(hint, keep_lines=True))
     if result.get('error'):
         print('check: %s' % terminal_text(result['error'], keep_lines=True))
+
+
+def total_text(result, due=None, everything=False, now=None):
+    """'10 / 12, 1 criterion hidden (not counted)': the total over what print_result showed."""
+    if everything:
+        return '%g / %g' % (result['score'], result['max_score'])
+    points, maximum, hidden = results.shown_total(result, due, now)
+    hidden_text = ', %d criteri%s hidden (not counted)' % (hidden, 'on' if hidden == 1 else 'a') if hidden else ''
+    return '%g / %g%s' % (points, maximum, hidden_text)
 
 
 def main(argv=None):
@@ -96,15 +111,24 @@ def main(argv=None):
           % (folder, args.lab, ', the criterion %s only' % args.only if args.only else ''), flush=True)
     options = Options(only=args.only, on_step=lambda step: print('check: %s' % step, flush=True))
     result = Grader(rubric, out, options, announce=False).grade_one(folder)
-    print_result(result, args.only)
+    due = rubric.late.due() if rubric.late else None
+    print_result(result, args.only, due)
     student = os.path.join(out, result['folder'])
     print('check: pictures and logs in %s' % student)
+    kept = sorted(name for name in os.listdir(student) if name.endswith('.bag'))
+    if kept:
+        print('check: each run as a rosbag in %s; to play one in the browser (http://localhost:8080/):' % student)
+        for name in kept:
+            print('    roslaunch course_web replay.launch bag:=%s' % os.path.join(student, name))
+    for note in result.get('notes', []):
+        print('check: note: %s' % terminal_text(note, keep_lines=True))
     seconds = time.monotonic() - started
     if args.only:
         criterion = next(c for c in result['criteria'] if c['id'] == args.only)
-        print('check: %s %g / %g, the other criteria not checked (%.0f s)'
-              % (args.only, criterion['points'], criterion['max_points'], seconds))
+        print('check: %s %s, the other criteria not checked (%.0f s)' % (
+            args.only, '%g / %g' % (criterion['points'], criterion['max_points'])
+            if results.shown_to_student(criterion, due) else results.HIDDEN[criterion['visibility']], seconds))
     else:
-        print('check: total %g / %g (%.0f s)' % (result['score'], result['max_score'], seconds))
+        print('check: total %s (%.0f s)' % (total_text(result, due), seconds))
     print('check: %s' % COUNTS)
     return 0

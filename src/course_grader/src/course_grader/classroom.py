@@ -6,10 +6,16 @@ runner, from the environment variable <RUNNER>_RESULTS: `version`, `status` (pas
 `score` and the runners' `max_score` into the points Classroom shows, and prints a table with one
 row per runner whose score is max_score times the share of its tests passed. So each criterion of
 the rubric is a runner of its own, with one test: every row of the table is then the criterion's
-points exactly, whatever the rubric's weights."""
+points exactly, whatever the rubric's weights.
+
+A criterion the student may not see yet (results.shown_to_student) still sends its points and
+status, which are Classroom's grade, but its message is only the sentence saying it is hidden: the
+reporter prints messages and the points table in the run's log, which the student reads."""
 import base64
 import json
 import re
+
+from course_grader import results
 
 GRADE_STEP = 'grade'   # the workflow's grading step: one output per criterion
 
@@ -21,14 +27,17 @@ def inert(text):
     return re.sub(r'^(\s*):(?=:)', r'\1: ', text, flags=re.MULTILINE)
 
 
-def criterion_message(criterion):
-    """What the student reads for a criterion: its reason, then its hints, one a line."""
+def criterion_message(criterion, due=None, now=None):
+    """What the student reads for a criterion: its reason, then its hints, one a line; for one not
+    theirs to see yet, only that it is hidden."""
+    if not results.shown_to_student(criterion, due, now):
+        return results.HIDDEN[criterion['visibility']]
     lines = [criterion['reason'] or ('passed' if criterion['passed'] else 'failed')]
     lines += ['hint: %s' % hint for hint in criterion.get('hints') or []]
     return inert('\n'.join(lines))
 
 
-def runner_result(result, criterion):
+def runner_result(result, criterion, due=None, now=None):
     """The reporter's JSON object (a dict) for one criterion of a result of results.score. A
     submission that could not be graded at all (result['error'] and nothing passed: no package, the
     grading stopped) is an `error`, which the reporter prints with its message."""
@@ -36,7 +45,8 @@ def runner_result(result, criterion):
     status = 'pass' if criterion['passed'] else ('error' if ungraded else 'fail')
     return {'version': 1, 'status': status, 'max_score': criterion['max_points'],
             'tests': [{'name': '%s (%s)' % (criterion['title'], criterion['id']), 'status': status,
-                       'score': criterion['points'], 'message': criterion_message(criterion), 'line_no': 0}]}
+                       'score': criterion['points'], 'message': criterion_message(criterion, due, now),
+                       'line_no': 0}]}
 
 
 def encode(data):
@@ -48,14 +58,15 @@ def decode(text):
     return json.loads(base64.b64decode(text).decode('utf-8'))
 
 
-def outputs(result):
-    """The grading step's outputs, {criterion id: the reporter's base64 `result`}, in rubric order."""
-    return {c['id']: encode(runner_result(result, c)) for c in result['criteria']}
+def outputs(result, due=None, now=None):
+    """The grading step's outputs, {criterion id: the reporter's base64 `result`}, in rubric order
+    (`due`: when the rubric's after_due_date criteria are shown)."""
+    return {c['id']: encode(runner_result(result, c, due, now)) for c in result['criteria']}
 
 
-def output_lines(result):
+def output_lines(result, due=None, now=None):
     """The lines the grading step appends to $GITHUB_OUTPUT (name=value; base64 has no newline)."""
-    return ''.join('%s=%s\n' % item for item in outputs(result).items())
+    return ''.join('%s=%s\n' % item for item in outputs(result, due, now).items())
 
 
 def points(decoded_runners):

@@ -11,8 +11,9 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 
 from course_common import processes
-from course_grader import gradescope, reports, results, rubric as rubrics, sandbox
-from course_grader.submission import SubmissionError, ascii_name, find_package, student_of, terminal_text, unpack
+from course_grader import gradescope, reports, results, rubric as rubrics, sandbox, similarity
+from course_grader.submission import (SubmissionError, ascii_name, find_package, student_of, submitted, terminal_text,
+                                      unpack)
 
 MARKER = '.course_grader'            # in --out: the folder is the grader's (it may empty it)
 
@@ -31,6 +32,13 @@ def describe_labs():
     return '\n'.join(lines)
 
 
+def _deadline(text):
+    try:
+        return rubrics.parse_deadline(text, '--deadline')
+    except rubrics.RubricError as error:
+        raise argparse.ArgumentTypeError(str(error))
+
+
 def parse_args(argv):
     parser = argparse.ArgumentParser(
         prog='grade.sh', formatter_class=argparse.RawDescriptionHelpFormatter,
@@ -46,6 +54,9 @@ def parse_args(argv):
     parser.add_argument('--no-container', action='store_true',
                         help='run on this machine, without isolation (trusted code only)')
     parser.add_argument('--rubric', help='a rubric file of your own (default: rubrics/LAB.yaml)')
+    parser.add_argument('--deadline', type=_deadline, metavar='TIME',
+                        help='the deadline, ISO 8601 with its timezone (2026-12-01T23:59+01:00): work handed in '
+                             'later loses the rubric\'s late.per_day (default: the rubric\'s late.deadline)')
     parser.add_argument('--image', default=os.environ.get('COURSE_GRADER_IMAGE'),
                         help='Docker image of the course (grade.sh makes it)')
     args = parser.parse_args(argv)
@@ -92,6 +103,7 @@ class Grader:
         self.jobs = jobs
         self.announce = announce   # a line per graded student ("grade: [3/30] ...")
         self.previous = {}         # folder name: the result of the last grading into the same --out
+        self.late = None           # the late policy (rubric.LatePolicy with a deadline), or None
         self.lock = threading.Lock()
         self.done = 0
         self.total = 0
@@ -115,16 +127,19 @@ class Grader:
         finally:
             shutil.rmtree(scratch, ignore_errors=True)
         result.update(seconds=time.monotonic() - started, student=who.name, student_id=who.id, folder=student)
+        if self.late:
+            result = results.with_late(result, self.late, submitted(path))
         results.write(result, folder)   # the grade as the reports have it (checked against the rubric)
         gradescope.write(result, folder)
         with self.lock:
             self.done += 1
             if not self.announce:
                 return result
-            print('grade: [%d/%d] %s: %g / %g (%.0f s)%s%s' % (
+            print('grade: [%d/%d] %s: %g / %g (%.0f s)%s%s%s' % (
                 self.done, self.total, terminal_text(who.name + (' (%s)' % who.id if who.id else '')),
                 result['score'], result['max_score'], result['seconds'],
                 ': ' + terminal_text(result['error']) if result.get('error') else '',
+                '; ' + terminal_text(results.describe_late(result['late'])) if result.get('late') else '',
                 self._since_last(student, result)), flush=True)
         return result
 
@@ -174,6 +189,10 @@ def main(argv=None):
                   % pwd.getpwuid(os.getuid()).pw_name, flush=True)
         elif not args.image:
             raise GraderError('no Docker image given (--image, or run ./grade.sh which makes it)')
+        if args.deadline and not rubric.late:
+            raise GraderError('--deadline needs the rubric\'s late policy (late: with %s): %s has none'
+                              % (', '.join(rubrics.LATE_KEYS), rubric.path))
+        late = rubric.late.with_deadline(args.deadline) if args.deadline else rubric.late
         previous = prepare_out(args.out)
     except (rubrics.RubricError, GraderError, OSError) as error:
         print('grade: %s' % terminal_text(error), file=sys.stderr)
@@ -184,6 +203,11 @@ def main(argv=None):
     options = sandbox.Options(image=None if args.no_container else args.image, rubric_file=args.rubric)
     grader = Grader(rubric, args.out, options, args.jobs)
     grader.previous = previous
+    if late and late.deadline:
+        grader.late = late
+        print('grade: late work: after %s%s, -%g%% of the maximum score per day begun, at most -%g%%' % (
+            late.deadline.isoformat(), ' and %g minutes of grace' % (late.grace.total_seconds() / 60)
+            if late.grace else '', late.per_day, late.cap), flush=True)
     class_results = grader.grade_all(args.submissions)
     seconds = time.monotonic() - started
     gone = sorted(set(previous) - {result['folder'] for result in class_results})
@@ -191,6 +215,8 @@ def main(argv=None):
         print('grade: graded last time into %s, not this time: %s' % (args.out, ', '.join(
             '%s (%g / %g)' % (terminal_text(previous[f]['student']), previous[f]['score'], previous[f]['max_score'])
             for f in gone)))
+    print('grade: %s' % similarity.write_class(args.lab, rubric.package, args.submissions, grader.out,
+                                               options.image), flush=True)
     reports.write_all(class_results, rubric, grader.out, seconds, previous)
     print('grade: %d students graded in %.0f s (%.1f s per student): %s, %s, %s' % (
         len(class_results), seconds, seconds / len(class_results), os.path.join(args.out, 'grades.csv'),

@@ -20,8 +20,8 @@ from concurrent.futures import ThreadPoolExecutor
 
 from course_common import sim_record
 from course_checks.launch import Launch
-from course_grader import feedback, labs, results, rubric as rubrics, wall_limit
-from course_common.process_table import stop_user
+from course_grader import bags, feedback, labs, results, rubric as rubrics, wall_limit
+from course_common.process_table import UserReaper, stop_user
 from course_common.processes import together
 from course_common.waiting import poll_until
 from course_grader.results import Verdict
@@ -36,6 +36,8 @@ class StudentSide:
         self.scratch = scratch
         self.home = os.path.join(scratch, 'home')
         self.env = dict(os.environ, HOME=self.home, ROS_HOME=os.path.join(scratch, 'ros_home'))
+        # Started now, while the user has no process: a fork bomb may leave no room for a program later.
+        self.reaper = UserReaper(pwd.getpwnam(user).pw_uid) if user else None
 
     def start(self, argv, log_path, cwd=None):
         return Launch(argv, log_path, env=self.env, user=self.user, cwd=cwd)
@@ -52,7 +54,7 @@ class StudentSide:
         ourselves (--no-container) there is no telling them from ours: the grader's mark stops
         them after the session."""
         if self.user:
-            stop_user(pwd.getpwnam(self.user).pw_uid)
+            stop_user(pwd.getpwnam(self.user).pw_uid, self.reaper)
 
 
 class Session:
@@ -68,6 +70,8 @@ class Session:
         self.student_side = student_side
         self.only = only   # a criterion id: the runs that judge other criteria are left out
         self.pictures = []
+        self.bags_dir = out_dir   # each run's bag and its marks (course_grader.bags), sent with the result
+        self.notes = []   # sentences on the grading that decide no criterion (a run's bag not kept)
         self.turtlesim_nodes = {}   # (launch file, args): what it declares of turtlesim (labs.turtlesim_runs)
 
     def script(self, name):
@@ -100,6 +104,32 @@ class Session:
         if os.path.lexists(path):   # of a simulator prepared before for the same run, which never ran
             os.remove(path)
         return path
+
+    def keep_run(self, name, messages):
+        """The run `name` as <name>.bag (course_grader.bags), from messages() (the simulators'
+        records converted), within bags.BAG_SECONDS. One that cannot be made or written (a full
+        disk) is a note, named in the log too: the run's criteria stand either way."""
+        path = os.path.join(self.bags_dir, name + bags.BAG_SUFFIX)
+        deadline = time.monotonic() + bags.BAG_SECONDS
+        try:
+            bags.write_bag(path, messages(), deadline)
+        except Exception as error:   # noqa: B902 (a full disk, a record cut short: the grade stands)
+            self.note('the run %s was not kept as %s (%s); its criteria stand' % (
+                name, os.path.basename(path), str(error)[:300] or type(error).__name__))
+
+    def keep_marks(self, name, marks):
+        """The moments the checks judged in the run `name` ([bags.mark]) as <name>.marks.json."""
+        path = os.path.join(self.bags_dir, name + bags.MARKS_SUFFIX)
+        try:
+            bags.write_marks(path, marks)
+        except Exception as error:   # noqa: B902 (as keep_run)
+            self.note('the moments judged in the run %s were not kept (%s); its criteria stand' % (
+                name, str(error)[:300] or type(error).__name__))
+
+    def note(self, sentence):
+        """A sentence on the grading that decides no criterion: in the result's notes and the log."""
+        self.notes.append(sentence)
+        print('grade_submission note: %s' % sentence, file=sys.stderr, flush=True)
 
     def picture(self, name):
         """Where a simulator of the trusted side saves the picture `name`."""
@@ -233,6 +263,7 @@ def grade(rubric, package_dir, out_dir, scratch, student, student_user=None, onl
             outcomes.update(lab.run_checks(session))
         result = results.score(rubric, outcomes, student, error=error, pictures=session.pictures,
                                seconds=time.monotonic() - started)
+        result['notes'] = list(session.notes)
         deliver(result)
     finally:
         master.stop()

@@ -15,7 +15,7 @@ import time
 import uuid
 
 from course_grader import classroom, feedback, gradescope, results, rubric as rubrics, sandbox
-from course_grader.check import print_result
+from course_grader.check import print_result, total_text
 from course_grader.submission import (MAX_UNPACKED_BYTES, SubmissionError, check_folder, find_package, terminal_text,
                                       unpack, upload_inside)
 
@@ -99,9 +99,11 @@ def deliver_gradescope(result, folder, fd, work):
     shutil.rmtree(private)
 
 
-def report(result, stream, runner_log=False):
-    """Each criterion, its points, reason and hints, then the total (as `check` prints them). In a
-    runner's log, between ::stop-commands:: and its token, so that nothing a reason quotes of the
+def report(result, stream, runner_log=False, due=None, everything=False):
+    """Each criterion, its points, reason and hints, then the total, as `check` prints them: a
+    criterion the student may not see yet as one line (`due`: when after_due_date ones are shown),
+    unless everything (Gradescope's log, which only the teacher reads). In a runner's log (which the
+    student reads), between ::stop-commands:: and its token, so that nothing a reason quotes of the
     student's output is taken for a workflow command."""
     token = uuid.uuid4().hex
     with contextlib.redirect_stdout(stream):
@@ -110,10 +112,10 @@ def report(result, stream, runner_log=False):
         print('%s: %s' % (result['lab'], terminal_text(result['student'])))
         error = result.get('error')
         if not (error and all(c['reason'] == error for c in result['criteria'])):   # else nothing was graded
-            print_result(dict(result, error=None))
+            print_result(dict(result, error=None), due=due, everything=everything)
         if error:
             print('not fully graded: %s' % terminal_text(error, keep_lines=True))
-        print('total %g / %g (%.0f s)' % (result['score'], result['max_score'], result['seconds'] or 0))
+        print('total %s (%.0f s)' % (total_text(result, due, everything), result['seconds'] or 0))
         if runner_log:
             print('::%s::' % token)
     stream.flush()
@@ -149,11 +151,12 @@ def main(argv=None):
         result = grade_folder(rubric, args.folder, args.student, work)
     except Exception as error:   # a fault of the grader: the platform still gets a result saying so
         result = results.failed(rubric, args.student, 'the grader failed on this submission: %r' % error, seconds=0)
+    due = rubric.late.due() if rubric.late else None   # shows after_due_date criteria; no late penalty here
     if args.platform == 'classroom':
-        report(result, sys.stderr, runner_log=True)
-        result_stream.write(classroom.output_lines(result))
+        report(result, sys.stderr, runner_log=True, due=due)
+        result_stream.write(classroom.output_lines(result, due))
         result_stream.close()
     else:
         deliver_gradescope(result, args.results, args.results_fd, work)
-        report(result, sys.stdout)
+        report(result, sys.stdout, everything=True)
     return 0

@@ -6,7 +6,7 @@ import html
 import os
 import xml.etree.ElementTree as ET
 
-from course_grader import feedback, results as course_results
+from course_grader import feedback, replay, results as course_results, similarity
 
 
 def _points(value):
@@ -32,17 +32,30 @@ def _csv_cell(value):
     return "'" + text if text.startswith(FORMULA_STARTS) else text
 
 
+# After the criteria, what late work cost (results.with_late): empty without a late policy.
+LATE_COLUMNS = ['raw_score', 'late_penalty', 'days_late', 'submitted', 'submitted_from']
+
+
+def _late_cells(result):
+    late = result.get('late')
+    raw = result.get('raw_score', result['score'])
+    if not late:
+        return [raw, '', '', '', '']
+    return [raw, late['penalty'], late['days_late'], late['submitted'] or '', course_results.late_source(late)]
+
+
 def write_csv(results, rubric, path):
     """One row per student: the name as the platform wrote it, its id there (the column a grade
-    book matches rows by), the score and each criterion's points."""
+    book matches rows by), the (final) score and each criterion's points, then the score before
+    the late penalty and what the penalty was made of (LATE_COLUMNS)."""
     with open(path, 'w', newline='', encoding='utf-8') as stream:
         writer = csv.writer(stream)
         writer.writerow([_csv_cell(name) for name in ['student', 'id', 'lab', 'score', 'max_score']
-                         + [c.id for c in rubric.criteria]])
+                         + [c.id for c in rubric.criteria] + LATE_COLUMNS])
         for result in sorted(results, key=lambda r: r['student']):
             points = {c['id']: c['points'] for c in result['criteria']}
             cells = [result['student'], result.get('student_id', ''), result['lab'], result['score'],
-                     result['max_score']] + [points.get(c.id, 0) for c in rubric.criteria]
+                     result['max_score']] + [points.get(c.id, 0) for c in rubric.criteria] + _late_cells(result)
             writer.writerow([_csv_cell(cell) for cell in cells])
 
 
@@ -98,14 +111,16 @@ def html_report(results, rubric, out_dir, seconds=None, previous=None, log_lines
     previous = previous or {}
     esc = html.escape
     results = sorted(results, key=lambda r: r['student'])
-    parts = ['<!DOCTYPE html><html><head><meta charset="utf-8"><title>%s: grades</title><style>%s</style>'
+    parts = ['<!DOCTYPE html><html><head><meta charset="utf-8">'
+             '<meta name="viewport" content="width=device-width, initial-scale=1"><title>%s: grades</title><style>%s</style>'
              '</head><body>' % (esc(rubric.lab), CSS),
              '<h1>%s</h1><p>Lab <code>%s</code>, %d students, out of %s points%s. Rubric: <code>%s</code>.</p>'
              % (esc(rubric.title), esc(rubric.lab), len(results), _points(rubric.max_score),
                 ', graded in %.0f s' % seconds if seconds is not None else '',
                 esc(os.path.basename(rubric.path)))]
-    parts.append('<table class="summary"><tr><th>student</th><th>id</th><th>score</th>%s%s</tr>' % (
-        '<th>before</th>' if previous else '',
+    late = any(r.get('late') for r in results)
+    parts.append('<table class="summary"><tr><th>student</th><th>id</th><th>score</th>%s%s%s</tr>' % (
+        '<th>before the late penalty</th><th>late</th>' if late else '', '<th>before</th>' if previous else '',
         ''.join('<th title="%s">%s</th>' % (esc(c.title), esc(c.id)) for c in rubric.criteria)))
     for result in results:
         cells = ''.join('<td class="%s num">%s</td>' % ('pass' if c['passed'] else 'fail', _points(c['points']))
@@ -113,9 +128,11 @@ def html_report(results, rubric, out_dir, seconds=None, previous=None, log_lines
         earlier = previous.get(folder_of(result))
         before = ('<td class="num">%s</td>' % ('%s / %s' % (_points(earlier['score']), _points(earlier['max_score']))
                                               if earlier else 'new') if previous else '')
-        parts.append('<tr><td><a href="#%s">%s</a></td><td>%s</td><td class="num">%s / %s</td>%s%s</tr>' % (
+        lateness = ('<td class="num">%s</td><td class="num">%s</td>' % (
+            _points(result.get('raw_score', result['score'])), _late_summary(result.get('late'))) if late else '')
+        parts.append('<tr><td><a href="#%s">%s</a></td><td>%s</td><td class="num">%s / %s</td>%s%s%s</tr>' % (
             esc(folder_of(result)), esc(result['student']), esc(result.get('student_id', '')),
-            _points(result['score']), _points(result['max_score']), before, cells))
+            _points(result['score']), _points(result['max_score']), lateness, before, cells))
     parts.append('</table>')
     gone = sorted(set(previous) - {folder_of(r) for r in results})
     if gone:
@@ -130,13 +147,21 @@ def html_report(results, rubric, out_dir, seconds=None, previous=None, log_lines
         changed = results_change(previous, result)
         if changed:
             parts.append('<p class="change">%s</p>' % esc(changed))
+        if result.get('late'):
+            parts.append('<p class="late">Late work: %s.%s</p>' % (
+                esc(course_results.describe_late(result['late'])), ' Score %s / %s before the penalty, %s after it.' % (
+                    _points(result['raw_score']), _points(result['max_score']), _points(result['score']))
+                if result['late']['penalty'] else ''))
         if result.get('error'):
             parts.append('<p class="error">%s</p>' % esc(result['error']))
+        for note in result.get('notes', []):
+            parts.append('<p class="note">Note: %s</p>' % esc(note))
         parts.append('<table><tr><th>criterion</th><th>points</th><th>why</th></tr>')
         for c in result['criteria']:
             why = _failure_text(c) or 'ok'   # hints too when it passed (a node that ignores Ctrl-C)
+            seen = '' if c.get('visibility', 'visible') == 'visible' else ' (%s for the student)' % c['visibility']
             parts.append('<tr><td>%s</td><td class="%s num">%s / %s</td><td class="why">%s</td></tr>' % (
-                esc(c['title']), 'pass' if c['passed'] else 'fail', _points(c['points']),
+                esc(c['title'] + seen), 'pass' if c['passed'] else 'fail', _points(c['points']),
                 _points(c['max_points']), esc(why)))
         parts.append('</table>')
         pictures = [p for p in result.get('pictures', []) if os.path.isfile(os.path.join(folder, p))]
@@ -148,13 +173,25 @@ def html_report(results, rubric, out_dir, seconds=None, previous=None, log_lines
                 parts.append('<figure style="display:inline-block"><img alt="%s" src="data:image/png;base64,%s">'
                              '<figcaption>%s</figcaption></figure>' % (esc(picture), data, esc(picture)))
             parts.append('</div>')
+        parts.append(replay.runs_html(out_dir, folder_of(result)))   # each run played back
         for log in sorted(n for n in os.listdir(folder) if n.endswith('.log')) if os.path.isdir(folder) else []:
             tail = feedback.log_tail(os.path.join(folder, log), log_lines)
             if tail:
                 parts.append('<details><summary>%s (last %d lines; whole log in %s/%s)</summary><pre>%s</pre>'
                              '</details>' % (esc(log), log_lines, esc(folder_of(result)), esc(log), esc(tail)))
+    parts.append(replay.PAGE_PARTS)
+    parts.append(similarity.html_section(out_dir))
     parts.append('</body></html>')
     return '\n'.join(parts)
+
+
+def _late_summary(late):
+    """The class table's late cell: '-2.8 (2 d)', 'on time', 'no time' or '' without a policy."""
+    if not late:
+        return ''
+    if late['submitted'] is None:
+        return 'no time'
+    return '-%s (%d d)' % (_points(late['penalty']), late['days_late']) if late['days_late'] else 'on time'
 
 
 def results_change(previous, result):

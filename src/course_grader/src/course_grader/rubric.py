@@ -1,4 +1,6 @@
-"""Rubric files (rubrics/<lab>.yaml): what is graded, for how many points, with which thresholds."""
+"""Rubric files (rubrics/<lab>.yaml): what is graded, for how many points, with which thresholds,
+what the student may see of each criterion (`visibility`) and the late-work policy (`late`)."""
+import datetime
 import os
 
 import rospkg
@@ -7,6 +9,12 @@ import yaml
 from course_grader.labs import LABS, lab_module
 
 LIMITS = ('build_seconds', 'run_seconds', 'start_seconds', 'stop_seconds')
+# Gradescope's words for who sees a test (tests[].visibility of its results.json); the student's
+# check and a Classroom run show a criterion in full only when it is visible (or after_due_date
+# once the deadline has passed).
+VISIBILITIES = ('visible', 'hidden', 'after_due_date', 'after_published')
+LATE_KEYS = ('deadline', 'grace_minutes', 'per_day', 'cap')
+DAY = datetime.timedelta(days=1)
 
 
 def rubric_dir():
@@ -16,6 +24,79 @@ def rubric_dir():
 
 class RubricError(Exception):
     """A rubric file a teacher edited cannot be used: the message says where and why."""
+
+
+def parse_deadline(value, where='the deadline'):
+    """A deadline as an aware datetime: ISO 8601 with a timezone (2026-12-01T23:59+01:00, or Z for
+    UTC), as text or as YAML's own timestamp; a RubricError saying why for anything else."""
+    if isinstance(value, datetime.datetime):
+        when = value
+    elif isinstance(value, str):
+        try:
+            when = datetime.datetime.fromisoformat(value.strip().replace('Z', '+00:00').replace('z', '+00:00'))
+        except ValueError:
+            raise RubricError('%s %r is not a time in ISO 8601 (give it as 2026-12-01T23:59+01:00)' % (where, value))
+    else:
+        raise RubricError('%s must be a time in ISO 8601 with its timezone (2026-12-01T23:59+01:00), not %r'
+                          % (where, value))
+    if when.tzinfo is None or when.utcoffset() is None:
+        raise RubricError('%s %s has no timezone: give one (2026-12-01T23:59+01:00, or Z for UTC)' % (where, value))
+    return when
+
+
+class LatePolicy:
+    """The rubric's `late:` section: the deadline (None: nothing is late), the grace period, and the
+    penalty in percent of the maximum score per day late (each started 24 h after deadline + grace),
+    at most `cap` percent."""
+
+    def __init__(self, entry, where):
+        if not isinstance(entry, dict):
+            raise RubricError('%s: late must be a mapping (%s)' % (where, ', '.join(LATE_KEYS)))
+        unknown = sorted(str(key) for key in entry if key not in LATE_KEYS)
+        missing = [key for key in LATE_KEYS if key not in entry]
+        if unknown or missing:
+            raise RubricError('%s: late %s (a late policy gives %s)' % (where, '; '.join(
+                (['has no %s' % ', '.join(missing)] if missing else [])
+                + (['gives %s, which the grader does not read' % ', '.join(unknown)] if unknown else [])),
+                ', '.join(LATE_KEYS)))
+        deadline = entry['deadline']
+        self.deadline = None if deadline in (None, '') else parse_deadline(deadline, '%s: late.deadline' % where)
+        for key, top in (('grace_minutes', None), ('per_day', 100), ('cap', 100)):
+            value = entry[key]
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or value < 0 \
+                    or (top is not None and value > top):
+                allowed = ('a number from 0 to %d (percent of the maximum score)' % top if top
+                           else 'a number of minutes, 0 or more')
+                raise RubricError('%s: late.%s must be %s, not %r' % (where, key, allowed, value))
+        self.grace = datetime.timedelta(minutes=entry['grace_minutes'])
+        self.per_day = entry['per_day']
+        self.cap = entry['cap']
+        self.due()   # a deadline so late that the grace cannot be added is refused here
+
+    def due(self):
+        """When work starts being late: the deadline plus the grace period (None: never)."""
+        try:
+            return None if self.deadline is None else self.deadline + self.grace
+        except OverflowError:
+            raise RubricError('the deadline %s plus late.grace_minutes is beyond the last time a date can '
+                              'hold' % self.deadline.isoformat())
+
+    def with_deadline(self, deadline):
+        """The same policy with another deadline (the teacher's --deadline)."""
+        policy = LatePolicy.__new__(LatePolicy)
+        policy.__dict__.update(self.__dict__, deadline=deadline)
+        policy.due()
+        return policy
+
+    def days_late(self, submitted):
+        """Days late of a submission made at `submitted` (aware): 0 up to deadline + grace, then 1 for
+        each 24 h begun after it."""
+        if self.deadline is None or submitted <= self.due():
+            return 0
+        return -((self.due() - submitted) // DAY)
+
+    def penalty_percent(self, days):
+        return min(self.cap, self.per_day * days)
 
 
 class Criterion:
@@ -31,7 +112,11 @@ class Criterion:
         if isinstance(points, bool) or not isinstance(points, (int, float)) or points < 0:
             raise RubricError('%s: points of %r must be a number >= 0, not %r' % (where, self.id, points))
         self.points = points
-        self.settings = {k: v for k, v in entry.items() if k not in ('id', 'title', 'points')}
+        self.visibility = entry.get('visibility', 'visible')
+        if self.visibility not in VISIBILITIES:
+            raise RubricError('%s: visibility of %r must be one of %s, not %r' % (
+                where, self.id, ', '.join(VISIBILITIES), self.visibility))
+        self.settings = {k: v for k, v in entry.items() if k not in ('id', 'title', 'points', 'visibility')}
 
     def __getitem__(self, key):
         """A setting of the criterion (a threshold, a file name): the rubric's, there is no default."""
@@ -60,6 +145,8 @@ class Rubric:
         self.limits = data.get('limits') or {}
         if not isinstance(self.limits, dict) or set(LIMITS) - set(self.limits):
             raise RubricError('%s: limits must give %s' % (path, ', '.join(LIMITS)))
+        # No late: section is a policy with no deadline; --deadline then needs the section's numbers.
+        self.late = LatePolicy(data['late'], path) if data.get('late') is not None else None
 
     def check_against(self, known, lab_module):
         """Refuse, before anything runs, a criterion the lab does not check, a check of the lab the

@@ -30,6 +30,7 @@ from course_common.processes import stop_process_group
 from course_common.waiting import poll_until
 from course_grader import feedback
 from course_grader.labs import wall_limit_of
+from course_grader.results import RESULT_FILE
 from course_grader.submission import ascii_name
 
 # The session, by its module: rosrun's look-up costs half a second.
@@ -130,16 +131,20 @@ def in_container(grading, options):
                + session_args(grading, options, '/submission/' + grading.package, '/grader/out', '/tmp/student',
                               '/rubric.yaml'))
 
-    def stop(process):   # whatever happened: the container and everything in it are gone
-        subprocess.run(['docker', 'rm', '-f', name], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        # rm -f answers at once while the engine is still removing it for --rm (seen under load):
-        # gone means the engine no longer knows the name.
-        poll_until(lambda: subprocess.run(['docker', 'container', 'inspect', name], stdout=subprocess.DEVNULL,
-                                          stderr=subprocess.DEVNULL).returncode != 0, 60, poll=0.2)
-        if process.poll() is None:
-            process.kill()
-            process.wait()
-    return _run_session(command, grading, options, stop)
+    # Whatever happened: the container and everything in it are gone.
+    return _run_session(command, grading, options, lambda process: stop_container(name, process))
+
+
+def stop_container(name, process):
+    """The container `name` and `process`, the `docker run` that started it, gone, whatever they were doing."""
+    subprocess.run(['docker', 'rm', '-f', name], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    # rm -f answers at once while the engine is still removing it for --rm (seen under load):
+    # gone means the engine no longer knows the name.
+    poll_until(lambda: subprocess.run(['docker', 'container', 'inspect', name], stdout=subprocess.DEVNULL,
+                                      stderr=subprocess.DEVNULL).returncode != 0, 60, poll=0.2)
+    if process.poll() is None:
+        process.kill()
+        process.wait()
 
 
 def on_host(grading, options):
@@ -266,7 +271,8 @@ def unpack_output(stream_bytes, staging):
 def copy_output(staging, folder):
     """The regular files the sandbox sent (no links, no folders), at most MAX_COPIED_BYTES."""
     copied = 0
-    for name in sorted(os.listdir(staging)):
+    # The result first: whatever else the session sent (its runs' bags, pictures) comes within what is left.
+    for name in sorted(os.listdir(staging), key=lambda name: (name != RESULT_FILE, name)):
         path = os.path.join(staging, name)
         if os.path.islink(path) or not os.path.isfile(path):
             continue

@@ -15,11 +15,15 @@ member bigger than it says or an archive that cannot be read. Names are Unicode 
 and '\\' separates folders as '/' does (Windows tools write it so).
 A plain folder is refused when it holds a FIFO, a socket, a device or a link that leads outside it."""
 import collections
+import datetime
 import lzma
 import os
 import re
 import stat
+import subprocess
 import tarfile
+import tempfile
+import threading
 import unicodedata
 import zipfile
 import zlib
@@ -84,6 +88,151 @@ def student_of(path):
             base = base[:-len(suffix)]
             break
     return Student(base, '', safe_name(base))
+
+
+Submitted = collections.namedtuple('Submitted', 'time source claim')
+Submitted.__doc__ = ('When a submission was handed in: an aware datetime, or None when it is not known; '
+                     'where that was read (a sentence, or why no time is known); and whether it is the '
+                     'student\'s own claim (a commit date, which the student can set) rather than a platform\'s.')
+
+GIT_SECONDS = 10          # reading a clone's last commit: a .git that makes git wait is given up on
+COMMIT_HEAD_BYTES = 65536  # a commit's header (its committer line) comes before its message
+SHA = re.compile(r'^[0-9a-f]{40}([0-9a-f]{24})?$')
+REF = re.compile(r'^refs/[A-Za-z0-9._/-]{1,200}$')
+COMMITTER = re.compile(rb'^committer .*> (-?\d{1,30}) [+-]\d{4}$', re.M)
+
+
+KEEP_TIMES = 'unpack the download with unzip, which keeps them'
+UNPACKED_SECONDS = 2   # a file whose time is its inode's change time was written so, not given a time
+
+
+def _file_time(path, follow=False):
+    """The time an archive or a download gave a file, as an aware datetime (UTC); None when it has
+    none: no time at all, or the time the file was written here (its modification time is its
+    change time: unpacked by a tool that keeps no times, such as python3 -m zipfile, or copied)."""
+    try:
+        status = (os.stat if follow else os.lstat)(path)
+        if abs(status.st_ctime - status.st_mtime) < UNPACKED_SECONDS:
+            return None
+        return datetime.datetime.fromtimestamp(status.st_mtime, datetime.timezone.utc)
+    except (OverflowError, OSError, ValueError):
+        return None
+
+
+def _small_text(path, limit=4096):
+    """The text of a small regular file, not followed if it is a link; None otherwise."""
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_NOFOLLOW | os.O_CLOEXEC)
+    except OSError:
+        return None
+    with os.fdopen(fd, 'rb') as stream:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            return None
+        return stream.read(limit).decode('ascii', errors='replace')
+
+
+def _head_commit(git_dir):
+    """The commit HEAD names in a .git folder, read from its files (HEAD, refs/, packed-refs), or a
+    sentence saying why there is none."""
+    head = _small_text(os.path.join(git_dir, 'HEAD'))
+    if head is None:
+        return None, 'its .git has no readable HEAD'
+    head = head.strip()
+    if SHA.match(head):
+        return head, None
+    ref = head[len('ref:'):].strip() if head.startswith('ref:') else ''
+    if not REF.match(ref) or '..' in ref:
+        return None, 'its .git/HEAD names no branch that can be read'
+    loose = _small_text(os.path.join(git_dir, *ref.split('/')))
+    if loose is not None and SHA.match(loose.strip()):
+        return loose.strip(), None
+    for line in (_small_text(os.path.join(git_dir, 'packed-refs'), 1 << 20) or '').splitlines():
+        sha, _, name = line.partition(' ')
+        if name == ref and SHA.match(sha):
+            return sha, None
+    return None, 'its branch has no commit'
+
+
+def _commit_time(folder):
+    """The committer time of the last commit of a clone (a Submitted), read without the clone's
+    config or hooks: HEAD is resolved from the .git files, and git (in a repository of our own, the
+    clone's objects only) prints that one commit."""
+    source = 'the last commit of the clone'
+    git_dir = os.path.join(folder, '.git')
+    mode = os.lstat(git_dir).st_mode
+    if not stat.S_ISDIR(mode):
+        return Submitted(None, 'its .git is %s, not a folder: not read' % (
+            'a file' if stat.S_ISREG(mode) else _what_is(mode)), True)
+    objects = os.path.join(git_dir, 'objects')
+    if not os.path.isdir(objects) or os.path.islink(objects):
+        return Submitted(None, 'its .git/objects is not a folder: not read', True)
+    sha, why = _head_commit(git_dir)
+    if sha is None:
+        return Submitted(None, why, True)
+    with tempfile.TemporaryDirectory(prefix='course-git-') as own:
+        os.makedirs(os.path.join(own, 'repo', 'refs'))
+        with open(os.path.join(own, 'repo', 'HEAD'), 'w') as stream:
+            stream.write(sha + '\n')
+        env = {'PATH': '/usr/bin:/bin', 'HOME': own, 'LC_ALL': 'C', 'GIT_CONFIG_NOSYSTEM': '1',
+               'GIT_CONFIG_GLOBAL': os.devnull, 'GIT_DIR': os.path.join(own, 'repo'),
+               'GIT_OBJECT_DIRECTORY': objects, 'GIT_NO_REPLACE_OBJECTS': '1', 'GIT_TERMINAL_PROMPT': '0'}
+        try:
+            git = subprocess.Popen(['git', '-c', 'core.hooksPath=/dev/null', 'cat-file', 'commit', sha], env=env,
+                                   cwd=own, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                   stderr=subprocess.DEVNULL, start_new_session=True)
+        except OSError:
+            return Submitted(None, 'git cannot be run here to read the clone', True)
+        # Only the header is read (a commit's message may be huge); git is stopped then, or at the time-out.
+        timed_out = threading.Event()
+        timer = threading.Timer(GIT_SECONDS, lambda: (timed_out.set(), git.kill()))
+        timer.start()
+        try:
+            header = git.stdout.read(COMMIT_HEAD_BYTES)
+        finally:
+            timer.cancel()
+            git.kill()
+            git.wait()
+            git.stdout.close()
+        if timed_out.is_set():
+            return Submitted(None, 'reading its last commit took more than %d s: given up' % GIT_SECONDS, True)
+    found = COMMITTER.search(header.split(b'\n\n', 1)[0])
+    if not found:
+        return Submitted(None, 'its last commit cannot be read', True)
+    try:
+        return Submitted(datetime.datetime.fromtimestamp(int(found.group(1)), datetime.timezone.utc), source, True)
+    except (OverflowError, OSError, ValueError):
+        return Submitted(None, 'its last commit gives a date that is no time (%s s after 1970)'
+                         % found.group(1).decode()[:40], True)
+
+
+def submitted(path):
+    """When the submission at `path` was handed in (a Submitted), from what the platform gives: a
+    Moodle folder's files keep the time Moodle received them (when unpacked with their times), a
+    Canvas file too (its name says `_late_` when Canvas found it late), and a clone (GitHub
+    Classroom's) has its last commit, whose date is the student's to set. Never raises."""
+    base = unicodedata.normalize('NFC', os.path.basename(os.path.normpath(path)))
+    try:
+        if os.path.isdir(path):   # the path the teacher gave, followed; nothing inside it is
+            if MOODLE_FOLDER.match(base):
+                files = [os.path.join(path, n) for n in os.listdir(path)
+                         if stat.S_ISREG(os.lstat(os.path.join(path, n)).st_mode)]
+                times = [t for t in map(_file_time, files) if t is not None]
+                if not times:
+                    return Submitted(None, 'the Moodle folder holds no file with Moodle\'s time (%s)'
+                                     % KEEP_TIMES, False)
+                return Submitted(max(times), 'Moodle\'s download: the time of its files', False)
+            if os.path.lexists(os.path.join(path, '.git')):
+                return _commit_time(path)
+            return Submitted(None, 'a folder without .git or a platform\'s name: no time is known', False)
+        canvas = CANVAS_FILE.match(base)
+        if canvas:
+            marked = ' (Canvas marked it late)' if '_late_' in base.lower() else ''
+            when = _file_time(path, follow=True)
+            return Submitted(when, 'Canvas\'s download: the time of its file%s' % marked if when
+                             else 'Canvas\'s file has not kept Canvas\'s time%s (%s)' % (marked, KEEP_TIMES), False)
+        return Submitted(None, 'an archive without a platform\'s name: no time is known', False)
+    except OSError as error:
+        return Submitted(None, 'its time cannot be read (%s)' % (error.strerror or type(error).__name__), False)
 
 
 # An archive member to make: its path components, 'file' or 'folder', its size, whether the archive

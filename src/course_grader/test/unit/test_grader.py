@@ -39,11 +39,13 @@ def test_only_regular_files_come_back_from_a_sandbox_within_the_size_limit(tmp_p
     folder.mkdir()
     (staging / 'build.log').write_text('built')
     (staging / 'huge.log').write_bytes(b'x' * 2000)
+    (staging / 'a_big_run.bag').write_bytes(b'x' * 700)   # before result.json by name, not by rank
+    (staging / 'result.json').write_text('{}' + ' ' * 398)
     os.symlink('/etc/passwd', str(staging / 'passwd.log'))
     (staging / 'sub').mkdir()
     monkeypatch.setattr(sandbox, 'MAX_COPIED_BYTES', 1000)
     sandbox.copy_output(str(staging), str(folder))
-    assert os.listdir(str(folder)) == ['build.log']
+    assert sorted(os.listdir(str(folder))) == ['build.log', 'result.json']
 
 
 def test_only_regular_files_of_the_trusted_sides_tar_stream_are_unpacked(tmp_path):

@@ -4,14 +4,13 @@ page draws, and the page's keys into the teleops' commands. Nothing else reaches
 It listens to the simulators only while a page is connected (and a few seconds after the last one
 left), so a view nobody watches costs them nothing. Threads: rospy's callbacks change the scenes
 (under their lock) and wake the web server, which sends one frame per turtlesim tick (the
-TurtleBot3's updates ride along, or go within 16 ms); the web server (tornado) runs in the main
+TurtleBot3's updates ride along, or go within a tick); the web server (tornado) runs in the main
 thread; a watch thread, while pages are connected, sees from the subscriptions' connections whether
 a simulator is still there and asks the master every few seconds which node is turtlesim (whatever
 its name: the node that publishes its own ~scene) and whether fake_tb3 runs.
 """
 import asyncio
 import json
-import math
 import signal
 import sys
 import threading
@@ -29,15 +28,17 @@ from course_common.sim_clock import stop_hearing_clock
 from course_web.frames import Scenes
 from course_web.protocol import TURTLESIM_KEYS
 from course_web.server import ViewServer
+from course_web.tb3_scene import odometry_fields
 from course_web.turtlesim_scene import SceneError
 from fake_tb3.models import UnknownModelError
 from fake_tb3.world import WorldError, load_world
 from turtlebot3_teleop.key_commands import KeyCommands, speed_limits
+from turtlesim.world import TICK_SECONDS
 
 CONNECTION_PERIOD = 0.5  # s between looks at the subscriptions' connections
 MASTER_PERIOD = 2.0  # s between questions to the master
 IDLE_SECONDS = 3.0  # s after the last page left before the simulators are let go
-TB3_FRAME_WITHIN = 0.016  # s: a TurtleBot3 update waits at most this for turtlesim's next tick
+TB3_FRAME_WITHIN = TICK_SECONDS  # s: a TurtleBot3 update waits at most this for turtlesim's next tick
 TB3_PUBLISH_PERIOD = 0.1  # s, as turtlebot3_teleop_key
 RELAY_TOPIC = 'cmd_vel_mux/input/teleop'  # the 000 lab's relay listens here, as turtlebot_teleop publishes
 
@@ -195,11 +196,8 @@ class RosView:
         self.server.notify()
 
     def on_odom(self, message):
-        pose, twist = message.pose.pose, message.twist.twist
-        yaw = 2.0 * math.atan2(pose.orientation.z, pose.orientation.w)
         with self.scenes.lock:
-            self.scenes.tb3.on_odom(pose.position.x, pose.position.y, math.atan2(math.sin(yaw), math.cos(yaw)),
-                                    twist.linear.x, twist.angular.z)
+            self.scenes.tb3.on_odom(*odometry_fields(message))
         self.server.notify(TB3_FRAME_WITHIN)
 
     def on_scan(self, message):

@@ -42,6 +42,15 @@ def scan_points(x, y, yaw, scan_offset, ranges, angle_min, angle_increment, rang
     return points, closest
 
 
+def odometry_fields(message):
+    """(x, y, yaw, linear, angular) of a nav_msgs/Odometry of a robot on the ground (the live view's
+    and a replayed bag's: any object of that shape)."""
+    pose, twist = message.pose.pose, message.twist.twist
+    yaw = 2.0 * math.atan2(pose.orientation.z, pose.orientation.w)
+    return (pose.position.x, pose.position.y, math.atan2(math.sin(yaw), math.cos(yaw)),
+            twist.linear.x, twist.angular.z)
+
+
 class Tb3Scene:
     """One fake_tb3 robot and its world. `generation` changes when the world or the robot is
     replaced (fake_tb3 started, restarted or gone), `version` with every change."""

@@ -54,7 +54,7 @@ _REAL = (int, float)
 
 def check_turtles(turtles):
     """The turtles list itself, once each entry is checked to be [name, x, y, theta, icon]: one
-    tight loop, as 100 turtles come 62.5 times a second."""
+    tight loop, as 100 turtles come at every tick."""
     if not isinstance(turtles, list):
         raise SceneError('expected a list of turtles, got %r' % (turtles,))
     for turtle in turtles:

@@ -35,7 +35,8 @@ class ServerTest(tornado.testing.AsyncTestCase):
     @tornado.testing.gen_test
     def test_the_page_and_its_files_come_from_the_server(self):
         client = tornado.httpclient.AsyncHTTPClient()
-        for path, text in (('/', 'view.js'), ('/view.js', 'WebSocket'), ('/view.css', 'canvas')):
+        for path, text in (('/', 'view.js'), ('/', 'scene.js'), ('/view.js', 'WebSocket'), ('/scene.js', 'getContext'),
+                           ('/view.css', 'canvas')):
             response = yield client.fetch(self.url(path))
             self.assertIn(text, response.body.decode())
         self.assertNotIn('http', (yield client.fetch(self.url('/'))).body.decode().replace('http://', ''))

@@ -176,7 +176,8 @@ class TurtlesimNode:
             if not rospy.has_param('~background_' + channel):
                 rospy.set_param('~background_' + channel, value)
         self.ticks = make_ticks()
-        self.world = World(RosLog, self.read_background(), name_key=rospy.resolve_name)
+        self.started_background = self.read_background()   # for the record's first entry
+        self.world = World(RosLog, self.started_background, name_key=rospy.resolve_name)
         self.world_lock = threading.Lock()  # held while the world changes and while it is copied
         self.scene_topic = SceneTopic(self.world)  # ~scene, for a web viewer
         self.requests = RequestQueue(expected=(TurtlesimError,),
@@ -244,6 +245,8 @@ class TurtlesimNode:
             if interface is not None and interface.pose is not None:
                 self.record.write(interface.pose.resolved_name, tick_ns, wall, RECORDED_POSE.pack(
                     turtle.x, turtle.y, turtle.theta, _float32(turtle.linear_velocity), _float32(turtle.wz)))
+        if roster is None:   # the first tick: the background the canvas was filled with
+            self.record.event('clear', tick_ns, wall, background=list(self.started_background))
         if roster != (self.world.roster, tuple(interfaces)):
             roster = (self.world.roster, tuple(interfaces))
             self.record.event('turtles', tick_ns, wall, names=sorted(interfaces))
@@ -256,6 +259,13 @@ class TurtlesimNode:
         """An event of the record (when there is one), at the last tick's time."""
         if self.record:
             self.record.event(name, self._recorded[2], time.monotonic(), **fields)
+
+    def drawn(self, name, now, **fields):
+        """In the tick thread: an event of the record (when there is one) that changes what the pen
+        draws (a pen set, the canvas cleared), at the time of the tick it applies in (`now`, s), so
+        that a replay redraws the trails as turtlesim drew them."""
+        if self.record:
+            self.record.event(name, int(round(now * 1e9)), time.monotonic(), **fields)
 
     def join(self):
         self._tick_thread.join()
@@ -302,7 +312,10 @@ class TurtlesimNode:
         self.ticks.commanded()
 
     def set_pen(self, name, req):
-        self.call(lambda now: self.world.set_pen(name, req.r, req.g, req.b, req.width, req.off))
+        def apply(now):
+            self.world.set_pen(name, req.r, req.g, req.b, req.width, req.off)
+            self.drawn('pen', now, turtle=name, r=req.r, g=req.g, b=req.b, width=req.width, off=bool(req.off))
+        self.call(apply)
         return SetPenResponse()
 
     def teleport_absolute(self, name, req):
@@ -315,13 +328,19 @@ class TurtlesimNode:
 
     def clear(self, _req):
         background = self.read_background()
-        self.call(lambda now: self.world.clear(background))
+        def apply(now):
+            self.world.clear(background)
+            self.drawn('clear', now, background=list(background))
+        self.call(apply)
         return EmptyResponse()
 
     def reset(self, _req):
         background = self.read_background()
         with self._registry_lock:
-            self.call(lambda now: self.world.reset(background))
+            def apply(now):
+                self.world.reset(background)
+                self.drawn('clear', now, background=list(background))
+            self.call(apply)
             failed = self._sync_interfaces()
         if failed:
             message = 'Cannot spawn turtle [%s]: %s' % next(iter(failed.items()))

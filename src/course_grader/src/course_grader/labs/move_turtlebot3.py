@@ -12,7 +12,7 @@ from course_checks import driving, laser, callers
 from course_checks.robot import SIMULATOR, RobotWatch, largest_move, node_names, travelled
 from course_checks.verdict import Verdict
 from course_common.waiting import Deadline
-from course_grader import feedback
+from course_grader import bags, feedback
 from course_grader.labs.common import LabRun, StudentNode, criteria_of, faked, run_each, will_run
 from course_grader.wall_limit import NODES
 from course_common.processes import together
@@ -124,6 +124,11 @@ class Run:
         self.simulators = simulators
         self.stopped = False
         self.sim_ended = False
+        self.name = os.path.splitext(script)[0]   # of its bag, <name>.bag (course_grader.bags)
+        self.marks = []       # the moments the checks judged (bags.mark)
+        self.entries = []     # what fake_tb3 recorded, once it stopped
+        self.scene = {'world': sim_args.get('world'),
+                      'model': sim_args.get('model') or os.environ.get('TURTLEBOT3_MODEL') or 'burger'}
         prepared = simulators.take()
         self.sim_log = prepared.log_name
         self.record = prepared.record
@@ -151,11 +156,24 @@ class Run:
         hints = self.node.explain()
         return Verdict(False, 'expected %s; seen: %s' % (expected, hints[0] if hints else 'nothing'), hints[1:])
 
+    def mark(self, t, what, criterion):
+        """A moment the checks judged, at `t` simulated seconds (kept beside the run's bag); a
+        moment that is no time is left out: a mark never costs a verdict."""
+        try:
+            self.marks.append(bags.mark(t, what, criterion))
+        except (TypeError, ValueError):
+            pass
+
     def judged(self, outcomes):
         """The outcomes, judged on fake_tb3's own record, unless the run was not the simulator's
         own doing: then they fail, naming who did what (a node of the submission that published on
         odom, scan or clock, a node that called fake_tb3's service, or a simulator that a node shut
-        down)."""
+        down). The moments marked are kept beside the run's bag, with each collision of a run
+        that judges avoid_stays."""
+        if 'avoid_stays' in outcomes:
+            for t, count in bags.collisions(self.entries):
+                self.mark(t, 'collision %d' % count, 'avoid_stays')
+        self.session.keep_marks(self.name, self.marks)
         impostors = self.watch.impostors()
         if impostors:
             return faked(outcomes, impostors, SIMULATOR)
@@ -184,7 +202,12 @@ class Run:
         # been sent just before the stop.
         self.watch.drain(DRAIN_SECONDS)
         self.watch.close()
-        if os.path.exists(self.record):   # read: it would only fill the trusted side's disk
+        if os.path.exists(self.record):   # read: kept as the run's bag, it would only fill the trusted side's disk
+            try:
+                self.entries = bags.read_record(self.record)
+            except OSError:   # kept or not, the run's verdicts stand (keep_run notes a bag it cannot make)
+                self.entries = []
+            self.session.keep_run(self.name, lambda: bags.fake_tb3_messages(self.entries, **self.scene))
             os.remove(self.record)
 
 
@@ -225,6 +248,13 @@ def check_trajectory(session, simulators):
                                         circle_c['min_travel'])
         outcomes['trajectory_circle'] = Verdict(driven.passed, 'expected %s (within %.2f m); seen %s' % (
             expected_circle, circle_c['radius_tolerance'] * expected_radius, driven.reason), hints)
+        run.mark(start, 'the circle watched from here, for %.1f simulated s' % seen_for, 'trajectory_circle')
+        if poses:
+            closing = [pose for pose in poses if pose[0] >= start + period / 2] or poses[-1:]
+            back = min(closing, key=lambda pose: math.hypot(pose[1] - spawn[0], pose[2] - spawn[1]))
+            run.mark(back[0], 'closest back to the spawn pose: %.2f m from it' % math.hypot(
+                back[1] - spawn[0], back[2] - spawn[1]), 'trajectory_circle')
+        run.mark(start + seen_for, 'the circle judged: %s' % driven.reason, 'trajectory_circle')
         return run.judged(outcomes)
     finally:
         run.stop()
@@ -302,6 +332,8 @@ def check_avoid_obstacle(session, simulators):
         if not stopped:
             run.stop()
             hints = run.node.explain()
+            run.mark(watch.now(), 'not stopped by the end of the run (front beam %.2f m)' % watch.front_range(),
+                     'avoid_stops')
             return run.judged({'avoid_stops': Verdict(False, 'expected %s; seen: it did not stop (drove %.2f m, '
                                            'front beam %.2f m, %d collisions)' % (
                                                expected, moved(), watch.front_range(), watch.collisions or 0), hints),
@@ -315,6 +347,9 @@ def check_avoid_obstacle(session, simulators):
         hints = run.node.explain()
         outcomes = {'avoid_stops': Verdict(front.passed, 'expected %s; seen: it drove %.2f m and %s' % (
             expected, travelled([spawn] + after[:1]), front.reason), hints)}
+        run.mark(first_stop[0], 'stopped after %.2f m: %s' % (travelled([spawn] + after[:1]), front.reason),
+                 'avoid_stops')
+        run.mark(after[-1][0] if after else first_stop[0], 'the stay judged: %s' % stayed.reason, 'avoid_stays')
         outcomes['avoid_stays'] = Verdict(stayed.passed, 'expected no collision and at most %.2f m moved in the %g '
                                           'simulated seconds after the stop; seen %s' % (
                                               stays_c['max_creep'], stay, stayed.reason), hints)

@@ -67,6 +67,7 @@ def check_turtle(session):
         sender = threading.Thread(target=hold, daemon=True)
         sender.start()
         deadline.wait(lambda: turtle.moving(watch), 10)
+        first = watch.count()
         samples = watch.record(teleop_c['seconds'])
         holding.clear()
         sender.join()
@@ -75,6 +76,11 @@ def check_turtle(session):
         outcomes['teleop'] = Verdict(followed.passed, 'expected the turtle at %.2f m/s turning %.2f rad/s while that '
                                      'Twist comes on cmd_vel_mux/input/teleop; seen %s' % (
                                          command.linear.x, command.angular.z, followed.reason))
+        window = launch.pose_times('turtle1')[first:first + len(samples)]
+        if window:
+            launch.mark(window[0], 'the teleop window opens: %.2f m/s turning %.2f rad/s sent on '
+                        'cmd_vel_mux/input/teleop' % (command.linear.x, command.angular.z), 'teleop')
+            launch.mark(window[-1], 'the teleop window judged: %s' % followed.reason, 'teleop')
         # The printout: after the turtle stopped, the last pose printed is the pose turtlesim publishes.
         deadline.wait(lambda: turtle.standing(watch), 10)
         final = watch.latest()

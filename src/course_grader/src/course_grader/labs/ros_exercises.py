@@ -239,9 +239,22 @@ def check_circle(session):
             wrong, seen = (None, judged.reason) if judged.passed else (judged.reason, None)
         verdict = Verdict(not wrong, 'expected a circle of radius %g m around (%.2f, %.2f), with the pose '
                           'printed; seen %s' % (radius, centre[0], centre[1], wrong or 'it: ' + seen))
+        _mark_circle(exercise, poses, len(points), full_turn, wrong or 'a circle of radius %g m: ' % radius + seen)
         return exercise.judged({'circle': exercise.on_interface(poses, 'turtle1') or verdict})
     finally:
         exercise.finish()
+
+
+def _mark_circle(exercise, poses, judged, full_turn, seen):
+    """The circle's moments: turtle1 starts to drive, closes its full turn (the `full_turn`-th
+    moving pose), and the last of the `judged` moving poses the verdict `seen` was drawn from."""
+    moving = [t for t, pose in zip(exercise.pose_times('turtle1'), poses.messages()) if pose.linear_velocity > 0]
+    if not moving:
+        return
+    exercise.mark(moving[0], 'turtle1 drives: the circle is judged from here', 'circle')
+    if len(moving) >= full_turn:
+        exercise.mark(moving[full_turn - 1], 'a full turn driven: the circle closes', 'circle')
+    exercise.mark(moving[max(0, min(judged, len(moving)) - 1)], 'the circle judged: %s' % seen, 'circle')
 
 
 def check_spawn_kill(session):

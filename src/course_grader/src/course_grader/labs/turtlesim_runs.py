@@ -20,7 +20,7 @@ from turtlesim.msg import Pose
 from course_checks.recorded import PublisherLook, RecordedTopic, Records
 from course_checks.verdict import Verdict
 from course_common.waiting import wait_for
-from course_grader import wall_limit
+from course_grader import bags, wall_limit
 from course_grader.labs.common import faked
 from course_grader.turtlesim_launch import PREFIX
 from course_common.processes import together
@@ -114,6 +114,9 @@ class TurtlesimLaunch:
         self.declared = declared if isinstance(declared, list) else []
         self.unread = None if isinstance(declared, list) else declared
         self.sim_log = os.path.splitext(log_name)[0] + '_turtlesim.txt'
+        self.name = os.path.splitext(log_name)[0]   # of its bag, <name>.bag (course_grader.bags)
+        self.marks = []          # the moments the checks judged (bags.mark)
+        self.recorded = []       # (record file, turtlesim's full name) of each turtlesim started
         self.simulators = {}     # full name: (its Launch, its XML-RPC URI once it registered)
         # What the turtlesims did, as they recorded it (the evidence of the run), and the nodes the
         # master lists as publishers of the turtles' pose topics beside them.
@@ -154,6 +157,7 @@ class TurtlesimLaunch:
                                       + ['%s:=%s' % pair for pair in node['remaps']], log, record=record)
         self.simulators[name] = (launch, None)
         self.records.add(record)
+        self.recorded.append((record, name))
         self.publishers.owners.add(name)
         if wait:
             self.wait_for_turtlesim(name)
@@ -180,6 +184,18 @@ class TurtlesimLaunch:
         topic = '/%s/pose' % turtle
         self.publishers.topics.add(topic)
         return RecordedTopic(self.records, topic, Pose)
+
+    def pose_times(self, turtle):
+        """The simulated time (s) of each pose of the turtle recorded so far, in the order of poses()."""
+        return [entry.sim_time for entry in self.records.entries('/%s/pose' % turtle)]
+
+    def mark(self, t, what, criterion):
+        """A moment the checks judged, at `t` simulated seconds (kept beside the run's bag); a
+        moment that is no time is left out: a mark never costs a verdict."""
+        try:
+            self.marks.append(bags.mark(t, what, criterion))
+        except (TypeError, ValueError):
+            pass
 
     def impostors(self):
         """{pose topic: nodes} of the nodes other than the turtlesims that the master listed as
@@ -226,12 +242,18 @@ class TurtlesimLaunch:
         together(*[functools.partial(launch.stop, seconds) for launch, seconds in stops])
         self.publishers.look(0)
         self.publishers.close()
+        if self.recorded:
+            self.session.keep_run(self.name, lambda: [message for record, name in self.recorded
+                                                      for message in bags.turtlesim_messages(bags.read_record(record), name)])
 
     def judged(self, outcomes):
         """The outcomes of the run, judged on what the turtlesims recorded, unless a turtlesim the
         grader started stopped or was replaced during it, or a node published on a turtle's pose
-        topic beside them: then each fails, saying so. Stops the run."""
+        topic beside them: then each fails, saying so. Stops the run; the moments marked are kept
+        beside its bag."""
         self.finish()
+        if self.recorded:   # a run with a turtlesim has a bag
+            self.session.keep_marks(self.name, self.marks)
         if self.trouble:
             return {criterion_id: Verdict(False, self.trouble) for criterion_id in outcomes}
         impostors = self.impostors()
