@@ -238,6 +238,17 @@ def mark(t, what, criterion):
     return {'t': round(float(t), 4), 'what': what, 'criterion': criterion}
 
 
+class Marks(list):
+    """The moments the checks judged in one run (marks, as write_marks takes them)."""
+
+    def add(self, t, what, criterion):
+        """A moment at `t` simulated seconds; one that is no time is left out: a mark never costs a verdict."""
+        try:
+            self.append(mark(t, what, criterion))
+        except (TypeError, ValueError):
+            pass
+
+
 def collisions(entries, robot=''):
     """[(simulated s, count)] of each collision fake_tb3 recorded (each rise of the robot's count)."""
     found, last = [], 0

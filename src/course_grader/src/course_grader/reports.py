@@ -7,6 +7,7 @@ import os
 import xml.etree.ElementTree as ET
 
 from course_grader import feedback, replay, results as course_results, similarity
+from course_grader.submission import spreadsheet_cell
 
 
 def _points(value):
@@ -18,18 +19,6 @@ def folder_of(result):
     return result.get('folder') or result['student']
 
 
-# What starts a formula in a spreadsheet (OWASP, CSV injection): a Moodle folder named
-# `=HYPERLINK(...)_4712_assignsubmission_file_` would give a cell that runs.
-FORMULA_STARTS = ('=', '+', '-', '@', '\t', '\r')
-
-
-def _csv_cell(value):
-    """A grades.csv cell: a number as a number (-1.5 too), any text inert: one that a spreadsheet
-    would take for a formula gets a leading quote, which shows it as the text it is."""
-    if isinstance(value, (int, float)):
-        return _points(value)
-    text = str(value)
-    return "'" + text if text.startswith(FORMULA_STARTS) else text
 
 
 # After the criteria, what late work cost (results.with_late): empty without a late policy.
@@ -50,13 +39,13 @@ def write_csv(results, rubric, path):
     the late penalty and what the penalty was made of (LATE_COLUMNS)."""
     with open(path, 'w', newline='', encoding='utf-8') as stream:
         writer = csv.writer(stream)
-        writer.writerow([_csv_cell(name) for name in ['student', 'id', 'lab', 'score', 'max_score']
+        writer.writerow([spreadsheet_cell(name) for name in ['student', 'id', 'lab', 'score', 'max_score']
                          + [c.id for c in rubric.criteria] + LATE_COLUMNS])
         for result in sorted(results, key=lambda r: r['student']):
             points = {c['id']: c['points'] for c in result['criteria']}
             cells = [result['student'], result.get('student_id', ''), result['lab'], result['score'],
                      result['max_score']] + [points.get(c.id, 0) for c in rubric.criteria] + _late_cells(result)
-            writer.writerow([_csv_cell(cell) for cell in cells])
+            writer.writerow([spreadsheet_cell(cell) for cell in cells])
 
 
 def _failure_text(criterion):

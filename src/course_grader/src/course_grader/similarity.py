@@ -42,7 +42,7 @@ import uuid
 
 from course_common.waiting import poll_until
 from course_grader.sandbox import CONTAINER_BASE, CONTAINER_LIMITS, read_at_most, stop_container
-from course_grader.submission import SubmissionError, find_package, student_of, terminal_text, unpack
+from course_grader.submission import SubmissionError, find_package, spreadsheet_cell, student_of, terminal_text, unpack
 
 Language = collections.namedtuple('Language', 'name tool suffixes run_tokens')   # suffixes[0]: its copies'
 LANGUAGES = (
@@ -408,12 +408,11 @@ def compare_class(lab, package, submissions, image=None):
 
 def write_csv(pairs, path):
     """similarity.csv: a row per pair, names as grades.csv writes them (inert in a spreadsheet)."""
-    from course_grader.reports import _csv_cell as cell   # here: reports imports this module
     with open(path, 'w', newline='', encoding='utf-8') as stream:
         writer = csv.writer(stream)
         writer.writerow(['student_a', 'id_a', 'student_b', 'id_b', 'percent', 'shared_lines'])
         for pair in pairs:
-            writer.writerow([cell(value) for value in (pair['a']['name'], pair['a']['id'], pair['b']['name'],
+            writer.writerow([spreadsheet_cell(value) for value in (pair['a']['name'], pair['a']['id'], pair['b']['name'],
                                                        pair['b']['id'], pair['percent'], pair['shared_lines'])])
 
 

@@ -65,6 +65,20 @@ def ascii_name(text):
     return re.sub(r'[^A-Za-z0-9._-]', '_', folded).strip('._-') or 'student'
 
 
+# What starts a formula in a spreadsheet (OWASP, CSV injection): a Moodle folder named
+# `=HYPERLINK(...)_4712_assignsubmission_file_` would give a cell that runs.
+FORMULA_STARTS = ('=', '+', '-', '@', '\t', '\r')
+
+
+def spreadsheet_cell(value):
+    """A CSV cell: a number as a number (-1.5 too), any text inert: one that a spreadsheet would
+    take for a formula gets a leading quote, which shows it as the text it is."""
+    if isinstance(value, (int, float)):
+        return '%g' % value
+    text = str(value)
+    return "'" + text if text.startswith(FORMULA_STARTS) else text
+
+
 def terminal_text(text, keep_lines=False):
     """text (a student's name, a reason quoting what a student's code printed) as a terminal must
     show it: line breaks, escape sequences, other control and format characters (bidirectional

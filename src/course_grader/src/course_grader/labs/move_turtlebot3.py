@@ -125,7 +125,7 @@ class Run:
         self.stopped = False
         self.sim_ended = False
         self.name = os.path.splitext(script)[0]   # of its bag, <name>.bag (course_grader.bags)
-        self.marks = []       # the moments the checks judged (bags.mark)
+        self.marks = bags.Marks()   # the moments the checks judged
         self.entries = []     # what fake_tb3 recorded, once it stopped
         self.scene = {'world': sim_args.get('world'),
                       'model': sim_args.get('model') or os.environ.get('TURTLEBOT3_MODEL') or 'burger'}
@@ -157,12 +157,8 @@ class Run:
         return Verdict(False, 'expected %s; seen: %s' % (expected, hints[0] if hints else 'nothing'), hints[1:])
 
     def mark(self, t, what, criterion):
-        """A moment the checks judged, at `t` simulated seconds (kept beside the run's bag); a
-        moment that is no time is left out: a mark never costs a verdict."""
-        try:
-            self.marks.append(bags.mark(t, what, criterion))
-        except (TypeError, ValueError):
-            pass
+        """A moment the checks judged, at `t` simulated seconds (kept beside the run's bag)."""
+        self.marks.add(t, what, criterion)
 
     def judged(self, outcomes):
         """The outcomes, judged on fake_tb3's own record, unless the run was not the simulator's

@@ -115,7 +115,7 @@ class TurtlesimLaunch:
         self.unread = None if isinstance(declared, list) else declared
         self.sim_log = os.path.splitext(log_name)[0] + '_turtlesim.txt'
         self.name = os.path.splitext(log_name)[0]   # of its bag, <name>.bag (course_grader.bags)
-        self.marks = []          # the moments the checks judged (bags.mark)
+        self.marks = bags.Marks()   # the moments the checks judged
         self.recorded = []       # (record file, turtlesim's full name) of each turtlesim started
         self.simulators = {}     # full name: (its Launch, its XML-RPC URI once it registered)
         # What the turtlesims did, as they recorded it (the evidence of the run), and the nodes the
@@ -190,12 +190,8 @@ class TurtlesimLaunch:
         return [entry.sim_time for entry in self.records.entries('/%s/pose' % turtle)]
 
     def mark(self, t, what, criterion):
-        """A moment the checks judged, at `t` simulated seconds (kept beside the run's bag); a
-        moment that is no time is left out: a mark never costs a verdict."""
-        try:
-            self.marks.append(bags.mark(t, what, criterion))
-        except (TypeError, ValueError):
-            pass
+        """A moment the checks judged, at `t` simulated seconds (kept beside the run's bag)."""
+        self.marks.add(t, what, criterion)
 
     def impostors(self):
         """{pose topic: nodes} of the nodes other than the turtlesims that the master listed as
