@@ -149,6 +149,20 @@ def test_a_rostest_that_leaves_a_process_running_fails_the_run_and_the_process_i
     assert not command_line(pid).endswith(' sleep 600')   # killed
 
 
+def test_a_process_left_running_is_one_failure_whatever_lines_its_command_has(workspace, tmp_path):
+    add_package(workspace, 'src/gamma', 'gamma', {'test_gamma.py': PASSING_TESTS}, rostests=['test/x.test'])
+    pid_file = tmp_path / 'left.pid'
+    # A `python3 -c` program of two lines, as a test's stand-in node (each line once counted as a failure).
+    write(str(workspace / 'tools/fake_bin/rostest'),
+          GOOD_ROSTEST + 'setsid -f bash -c \'echo $$ > %s; exec /usr/bin/python3 -c "import time\ntime.sleep(600)"\'\n'
+          % pid_file, 0o755)
+    code, output = run_test_command(workspace, 'gamma')
+    pid = int(pid_file.read_text())
+    assert (code, last_line(output)) == (1, '3 passed, 1 failed'), output
+    assert ('FAILED: rostest gamma/test/x.test left 1 process running (killed now): %d /usr/bin/python3 -c '
+            'import time\\ntime.sleep(600)' % pid) in output
+
+
 def test_each_test_file_of_tests_student_is_a_slow_step_of_its_own(workspace):
     for name in ('test_one.py', 'test_two.py'):
         write(str(workspace / 'tests/student' / name), PASSING_TESTS)

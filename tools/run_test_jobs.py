@@ -184,9 +184,10 @@ def release(mark, cores):
 
 def left_running(mark, grace=5.0):
     """What still runs with `mark` in its environment once `grace` seconds have passed (a node may
-    still be saving its picture as its roslaunch ends), as command lines; then stops it."""
+    still be saving its picture as its roslaunch ends), as command lines, each on one line (a
+    `python3 -c` program's lines would each count as a failed step); then stops it."""
     poll_until(lambda: not marked_processes(mark), grace, poll=0.2)
-    left = [command_line(pid) for pid in marked_processes(mark)]
+    left = [command_line(pid).replace('\n', '\\n') for pid in marked_processes(mark)]
     stop_marked(mark)
     return left
 
