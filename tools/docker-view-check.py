@@ -69,7 +69,7 @@ def in_image(image, name, command, **run):
 def main(image):
     """On the host: needs only the docker command; the ports and the page's reader come from the image."""
     run = uuid.uuid4().hex[:8]
-    ports = in_image(image, 'course-view-ports-' + run, 'exec python3 -c "from course_testing.processes import '
+    ports = in_image(image, 'course-view-ports-' + run, 'exec python3 -c "from course_common.processes import '
                      'free_port; print(free_port(), free_port())"', stdout=subprocess.PIPE, check=True)
     page_port, master_port = (int(port) for port in ports.stdout.split())
     lab = 'course-view-lab-' + run
