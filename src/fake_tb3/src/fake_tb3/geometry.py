@@ -10,10 +10,11 @@ NO_SEGMENTS = np.zeros((0, 4))
 NO_CIRCLES = np.zeros((0, 3))
 
 
-def _squared_distances(segments, x, y):
-    """Squared distance from (x, y) to each segment."""
+def _squared_distances(segments, x, y, ex=None, ey=None):
+    """Squared distance from (x, y) to each segment (ex, ey: its vectors, if made already)."""
     ax, ay = segments[:, 0] - x, segments[:, 1] - y
-    ex, ey = segments[:, 2] - segments[:, 0], segments[:, 3] - segments[:, 1]
+    if ex is None:
+        ex, ey = segments[:, 2] - segments[:, 0], segments[:, 3] - segments[:, 1]
     # The tiny term keeps a zero-length segment at along = 0 instead of 0 / 0.
     along = np.minimum(np.maximum(-(ax * ex + ay * ey) / (ex * ex + ey * ey + 1e-300), 0.0), 1.0)
     nearest_x, nearest_y = ax + along * ex, ay + along * ey
@@ -71,6 +72,8 @@ def cast_scans(poses, angles, near, far, segments=NO_SEGMENTS, circles=NO_CIRCLE
     """
     poses = np.asarray(poses, dtype=float).reshape(-1, 3)
     angles = np.asarray(angles, dtype=float)
+    if len(poses) == 1:
+        return _cast_every_ray(poses[0], angles, near, far, segments, circles, owners)[None, :]
     count, beams = len(poses), len(angles)
     px, py = poses[:, 0:1], poses[:, 1:2]
     directions = angles + poses[:, 2:3]  # as a laser adds its yaw to its beam angles
@@ -136,6 +139,44 @@ def cast_scans(poses, angles, near, far, segments=NO_SEGMENTS, circles=NO_CIRCLE
         first[1:] = ray_ids[1:] != ray_ids[:-1]
         best[ray_ids[first]] = distances[first]
     return best.reshape(count, beams)
+
+
+def _cast_every_ray(pose, angles, near, far, segments, circles, owners):
+    """cast_scans from one origin: every ray against every outline within reach that faces it, in
+    arrays (outlines, beams). With one origin this costs less than finding each outline's rays
+    (the arithmetic of each ray and outline is the same, so are the ranges, to the last bit)."""
+    px, py, yaw = pose.tolist()
+    directions = angles + yaw
+    cos_a, sin_a = np.cos(directions), np.sin(directions)
+    best = np.full(len(angles), np.inf)
+    if len(segments):  # arrays (outlines, beams) from here on
+        ax, ay = segments[:, 0] - px, segments[:, 1] - py
+        ex, ey = segments[:, 2] - segments[:, 0], segments[:, 3] - segments[:, 1]
+        a_cross_e = ax * ey - ay * ex
+        keep = (a_cross_e < 0) & (_squared_distances(segments, px, py, ex, ey) <= far * far)
+        if owners is not None:
+            keep &= np.asarray(owners) != 0
+        ax, ay, a_cross_e = ax[keep, None], ay[keep, None], a_cross_e[keep, None]
+        ex, ey = ex[keep, None], ey[keep, None]
+        d_cross_e = cos_a * ey - sin_a * ex
+        a_cross_d = sin_a * ax - cos_a * ay
+        with np.errstate(divide='ignore', invalid='ignore'):  # rays along a segment: unused
+            t = a_cross_e / d_cross_e
+            u = a_cross_d / d_cross_e
+        # As a x e < 0, t >= near > 0 holds only where d x e < 0: the test of entering is in it.
+        hit = (u >= 0.0) & (u <= 1.0) & (t >= near) & (t <= far)
+        best = np.where(hit, t, np.inf).min(axis=0, initial=np.inf)
+    if len(circles):
+        mx, my = px - circles[:, 0], py - circles[:, 1]
+        reach = far + circles[:, 2]
+        within = mx * mx + my * my <= reach * reach
+        mx, my, radius = mx[within, None], my[within, None], circles[within, 2, None]
+        b = cos_a * mx + sin_a * my
+        discriminant = b * b - (mx * mx + my * my - radius ** 2)
+        t = -b - np.sqrt(np.maximum(discriminant, 0.0))  # where the ray enters the disc
+        hit = (discriminant >= 0.0) & (t >= near) & (t <= far)
+        np.minimum(best, np.where(hit, t, np.inf).min(axis=0, initial=np.inf), out=best)
+    return best
 
 
 # Radians added on each side of an outline's span: far more than the rounding of the angles,
@@ -225,7 +266,10 @@ def box_outlines(poses, boxes):
     poses, boxes = np.asarray(poses, dtype=float), np.asarray(boxes, dtype=float)
     local_x = boxes[:, 0:1] + _CORNER_SIGNS[:, 0] * boxes[:, 1:2]
     local_y = _CORNER_SIGNS[:, 1] * boxes[:, 2:3]
-    c, s = np.cos(poses[:, 2:3]), np.sin(poses[:, 2:3])
+    # numpy's sin of a strided column may differ in the last bit with where the column lies in
+    # memory: a contiguous copy makes the outlines the same whatever the memory holds.
+    yaws = np.ascontiguousarray(poses[:, 2:3])
+    c, s = np.cos(yaws), np.sin(yaws)
     corners_x = poses[:, 0:1] + local_x * c - local_y * s
     corners_y = poses[:, 1:2] + local_x * s + local_y * c
     following = [1, 2, 3, 0]

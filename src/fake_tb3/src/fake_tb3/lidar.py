@@ -1,4 +1,5 @@
 """The LDS-01 laser of the TurtleBot3 as Gazebo simulates it."""
+import functools
 import math
 from dataclasses import dataclass
 
@@ -20,9 +21,12 @@ class LaserSpec:
     def angle_increment(self):
         return (self.angle_max - self.angle_min) / (self.samples - 1)
 
-    @property
+    @functools.cached_property
     def beam_angles(self):
-        return self.angle_min + self.angle_increment * np.arange(self.samples)
+        """The beams' angles, made once (read-only: every scan shares them)."""
+        angles = self.angle_min + self.angle_increment * np.arange(self.samples)
+        angles.flags.writeable = False
+        return angles
 
 
 LDS_01 = LaserSpec()
@@ -49,7 +53,9 @@ class Laser:
             spec = self.spec
             hit = np.isfinite(ranges)
             noisy = ranges[hit] + self._random.normal(0.0, self.noise_stddev, int(hit.sum()))
-            ranges[hit] = np.clip(noisy, spec.range_min, spec.range_max)
+            # np.clip's own checks cost more than its two comparisons.
+            ranges[hit] = np.minimum(np.maximum(noisy, spec.range_min, out=noisy), spec.range_max,
+                                     out=noisy)
         return ranges
 
 

@@ -264,6 +264,7 @@ class FakeTb3Node:
                              'it cannot move until placed elsewhere', robot.name or 'robot',
                              robot.x, robot.y, world.name)
         self.physics = Periodic(rospy.get_param('~physics_rate', 100.0), 'physics_rate')
+        self.physics_period = 1.0 / self.physics.rate
         self.imu_periodic = Periodic(rospy.get_param('~imu_rate', 30.0), 'imu_rate')
         scan_periodic = Periodic(rospy.get_param('~scan_rate', 5.0), 'scan_rate')
         self.schedules = [
@@ -348,10 +349,11 @@ class FakeTb3Node:
         self.requests.submit(action)
 
     def _step_physics(self, stamp):
-        began = self.simulation.step(1.0 / self.physics.rate)
-        for interface in self.interfaces:
-            if interface.robot in began:
-                interface.publish_collisions()
+        began = self.simulation.step(self.physics_period)
+        if began:
+            for interface in self.interfaces:
+                if interface.robot in began:
+                    interface.publish_collisions()
         if self.clock:
             self.clock_message.update(stamp.secs, stamp.nsecs)
             batched_writes.publish(self.clock, self.clock_message)
@@ -399,8 +401,9 @@ class FakeTb3Node:
         with lock_step no later than each scan until it is answered (course_common.lock_step)."""
         pacer = Pacer(self.real_time_factor, time.monotonic())
         writer_turns = batched_writes.WriterTurns()
+        periodics = [periodic for periodic, _ in self.schedules]
         while not self.stopping():
-            next_ns = min(periodic.next_ns for periodic, _ in self.schedules)
+            next_ns = min([periodic.next_ns for periodic in periodics])
             if self.lock_step and self.lock_step.holds(next_ns):
                 writer_turns.flush()   # the scan goes out before its answer is awaited
                 self.flush_record()

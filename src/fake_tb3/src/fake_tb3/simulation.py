@@ -7,7 +7,7 @@ import types
 import numpy as np
 
 from fake_tb3.geometry import box_outlines, boxes_overlap, clearance, nearby
-from fake_tb3.kinematics import arc_poses, wheel_turns, wrap_angle
+from fake_tb3.kinematics import HeldStep, arc_poses, wheel_turns, wrap_angle
 from fake_tb3.lidar import scan_all
 
 # Longest step any point of the body may make between two overlap tests. Much smaller than the
@@ -56,6 +56,7 @@ class SimRobot:
         self.free_travel = 0.0
         self.trail = [(self.x, self.y)]
         self.last_scan = None  # (x, y, yaw of the laser, ranges) of the latest scan
+        self.held_step = None  # the HeldStep of the latest full step, for the next ones
 
     @property
     def label(self):
@@ -143,18 +144,17 @@ def _contact_fraction(robot, dt, blocked, free, segments, circles):
     return free
 
 
-def step_robot(robot, dt, obstacles):
-    """Move `robot` for dt seconds with its command, stopping at the first contact. obstacles()
-    returns the (segments, circles) it may hit: asked for only when its free travel is used up.
+def step_robot(robot, dt, travel, obstacles):
+    """Move `robot` for dt seconds with its command (whose sweep is `travel`), stopping at the
+    first contact. obstacles() returns the (segments, circles) it may hit: asked for only when
+    its free travel is used up.
 
     Returns True when this step began a new contact: the robot was free before, or it left the
     contact it was in (moved more than CONTACT_TOLERANCE) and met an obstacle again.
     """
-    linear, angular = robot.command
     if dt <= 0:
         return False
     fraction = 1.0
-    travel = sweep(robot, dt)
     if travel > robot.free_travel:
         if travel:
             segments, circles = obstacles()
@@ -162,11 +162,14 @@ def step_robot(robot, dt, obstacles):
             if overlap is not None:
                 fraction = _contact_fraction(robot, dt, *overlap)
         robot.free_travel = 0.0
+    held = robot.held_step
     duration = fraction * dt
-    x, y, yaw = arc_poses(robot.x, robot.y, robot.yaw, linear, angular, duration)
-    robot.x, robot.y, robot.yaw = float(x), float(y), wrap_angle(float(yaw))
-    left, right = wheel_turns(linear * duration, angular * duration, robot.model)
-    robot.wheel_angles = (robot.wheel_angles[0] + left, robot.wheel_angles[1] + right)
+    if held is None or held.command is not robot.command or held.duration != duration:
+        held = HeldStep(robot.command, duration, robot.model)
+        if fraction == 1.0:  # a contact's step is not the next one's
+            robot.held_step = held
+    robot.x, robot.y, robot.yaw = held.pose_after(robot.x, robot.y, robot.yaw)
+    robot.wheel_angles = (robot.wheel_angles[0] + held.left, robot.wheel_angles[1] + held.right)
     return _moved(robot, travel, fraction, obstacles)
 
 
@@ -331,16 +334,19 @@ class Simulation:
             # The robots whose step needs no overlap test move first, together (when they are
             # enough to gain by it); then the others one by one, each tested against where
             # everyone else is by then.
-            free = [travel <= robot.free_travel or not travel
-                    for robot, travel in zip(self.robots, travels)]
-            if sum(free) >= TOGETHER:
-                step_free_robots(*zip(*[(robot, travel) for robot, travel, is_free
-                                        in zip(self.robots, travels, free) if is_free]),
-                                 dt, self.obstacles_for)
-            else:
-                free = [False] * len(self.robots)
-            began = [robot for robot, is_free in zip(self.robots, free)
-                     if not is_free and step_robot(robot, dt, self._obstacles_once(robot))]
+            free = [False] * len(self.robots)
+            if len(self.robots) >= TOGETHER:
+                free = [travel <= robot.free_travel or not travel
+                        for robot, travel in zip(self.robots, travels)]
+                if sum(free) >= TOGETHER:
+                    step_free_robots(*zip(*[(robot, travel) for robot, travel, is_free
+                                            in zip(self.robots, travels, free) if is_free]),
+                                     dt, self.obstacles_for)
+                else:
+                    free = [False] * len(self.robots)
+            began = [robot for robot, travel, is_free in zip(self.robots, travels, free)
+                     if not is_free
+                     and step_robot(robot, dt, travel, self._obstacles_once(robot))]
         self.time += dt
         for robot in began:
             self.log.warning('%s: collision at x %.3f y %.3f yaw %.3f: the body touches an '

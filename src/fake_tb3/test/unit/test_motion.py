@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from fake_tb3.kinematics import arc_poses, wrap_angle
+from fake_tb3.kinematics import HeldStep, arc_poses, wheel_turns, wrap_angle
 from fake_tb3.lidar import Laser
 from fake_tb3.models import UnknownModelError, get_model
 from fake_tb3.simulation import SimRobot, Simulation
@@ -122,3 +122,22 @@ def test_unknown_model_is_a_clear_error():
         get_model('burgerr')
     with pytest.raises(UnknownModelError):
         get_model(None)
+
+
+def test_held_steps_are_arc_poses_to_the_last_bit():
+    """HeldStep (the physics' step) against arc_poses, wrap_angle and wheel_turns, step by step,
+    for straight runs, spins, arcs and a yaw set back between steps."""
+    model = get_model('burger')
+    random = np.random.default_rng(3)
+    for linear, angular in [(0.22, 0.0), (0.0, 2.84), (-1.5, 0.3), (3.0, -7.0), (1e-9, 1e-12)]:
+        duration = float(random.choice([0.01, 0.013, 0.001]))
+        held = HeldStep((linear, angular), duration, model)
+        x, y, yaw = random.uniform(-3, 3, 2).tolist() + [float(random.uniform(-math.pi, math.pi))]
+        for step in range(200):
+            if step == 150:
+                yaw = 1.0  # a pose moved by something else: planned again from there
+            expected = arc_poses(x, y, yaw, linear, angular, duration)
+            x, y, yaw = held.pose_after(x, y, yaw)
+            assert (x, y, yaw) == (float(expected[0]), float(expected[1]),
+                                   wrap_angle(float(expected[2])))
+        assert (held.left, held.right) == wheel_turns(linear * duration, angular * duration, model)
