@@ -4,8 +4,8 @@ opens the folder: a report made from runs kept as the grader keeps them (replay_
 its frame. Play at a speed moves the robot (its laser points) and draws the turtle's circle where
 the bags put them, the slider follows, the judged moments show as the run passes them, seeking back
 redraws the run's start, a bag that cannot be read is a sentence, and on a phone-sized screen the
-player fits with thumb-sized controls. Screenshots go to $REPLAY_SCREENSHOTS, else a temporary
-folder (logged)."""
+player fits with thumb-sized controls, and the class table scrolls in its own box. Screenshots go
+to $REPLAY_SCREENSHOTS, else a temporary folder (logged)."""
 import os
 import shutil
 import tempfile
@@ -163,6 +163,20 @@ class ReplayInBrowser(unittest.TestCase):
     def test_4_on_a_phone_sized_screen_the_player_fits_with_thumb_sized_controls(self):
         self.browser.set_window_size(390, 844)
         try:
+            # The report itself: the class table scrolls in its own box, the page never sideways,
+            # and each student's score is in view beside the name.
+            self.browser.switch_to.default_content()
+            self.script('window.scrollTo(0, 0)')
+            width = self.script('return document.documentElement.clientWidth')
+            self.assertLessEqual(width, 390)
+            self.assertLessEqual(self.script('return document.documentElement.scrollWidth'), width)
+            table = self.browser.find_element(By.CSS_SELECTOR, 'table.summary')
+            self.assertGreater(self.script('return arguments[0].parentNode.scrollWidth', table),
+                               self.script('return arguments[0].parentNode.clientWidth', table))
+            score = self.browser.find_element(By.XPATH, '//table[@class="summary"]//tr[td/a="alice"]/td[3]')
+            self.assertEqual(score.text, '14 / 14')
+            self.assertLessEqual(self.script('return arguments[0].getBoundingClientRect().right', score), width)
+            self.page_shot('report-phone.png')
             self.open_run('avoid_obstacle')
             self.assertLessEqual(self.script('return document.documentElement.scrollWidth'),
                                  self.script('return document.documentElement.clientWidth'))

@@ -83,14 +83,19 @@ def write_junit(result, folder):
 CSS = '''
 body { font-family: sans-serif; margin: 2em; color: #222; max-width: 70em; }
 table { border-collapse: collapse; margin: 0.5em 0; }
+/* A table wider than a phone scrolls in its own box; the page itself never scrolls sideways. */
+.wide { overflow-x: auto; max-width: 100%; }
+.summary td:first-child, .summary th:first-child { position: sticky; left: 0; background: #fff; }
+.summary th:first-child { background: #eee; }
 th, td { border: 1px solid #bbb; padding: 0.25em 0.6em; text-align: left; vertical-align: top; }
 th { background: #eee; }
 td.pass { color: #161; } td.fail { color: #a11; }
-.summary td.num, td.num { text-align: right; }
+.summary td.num, td.num { text-align: right; white-space: nowrap; }
 pre { background: #f6f6f6; padding: 0.5em; max-height: 20em; overflow: auto; font-size: 85%; }
-.pictures img { max-width: 22em; border: 1px solid #ccc; margin: 0.3em; }
+.pictures img { max-width: min(22em, 90vw); border: 1px solid #ccc; margin: 0.3em; }
 .error { color: #a11; font-weight: bold; }
-td.why { white-space: pre-wrap; }
+td.why { white-space: pre-wrap; overflow-wrap: anywhere; }
+@media (max-width: 40em) { body { margin: 0.6em; } }
 '''
 
 
@@ -108,7 +113,7 @@ def html_report(results, rubric, out_dir, seconds=None, previous=None, log_lines
                 ', graded in %.0f s' % seconds if seconds is not None else '',
                 esc(os.path.basename(rubric.path)))]
     late = any(r.get('late') for r in results)
-    parts.append('<table class="summary"><tr><th>student</th><th>id</th><th>score</th>%s%s%s</tr>' % (
+    parts.append('<div class="wide"><table class="summary"><tr><th>student</th><th>id</th><th>score</th>%s%s%s</tr>' % (
         '<th>before the late penalty</th><th>late</th>' if late else '', '<th>before</th>' if previous else '',
         ''.join('<th title="%s">%s</th>' % (esc(c.title), esc(c.id)) for c in rubric.criteria)))
     for result in results:
@@ -122,7 +127,7 @@ def html_report(results, rubric, out_dir, seconds=None, previous=None, log_lines
         parts.append('<tr><td><a href="#%s">%s</a></td><td>%s</td><td class="num">%s / %s</td>%s%s%s</tr>' % (
             esc(folder_of(result)), esc(result['student']), esc(result.get('student_id', '')),
             _points(result['score']), _points(result['max_score']), lateness, before, cells))
-    parts.append('</table>')
+    parts.append('</table></div>')
     gone = sorted(set(previous) - {folder_of(r) for r in results})
     if gone:
         parts.append('<p>Graded last time into this folder, not this time: %s.</p>' % ', '.join(
@@ -145,14 +150,14 @@ def html_report(results, rubric, out_dir, seconds=None, previous=None, log_lines
             parts.append('<p class="error">%s</p>' % esc(result['error']))
         for note in result.get('notes', []):
             parts.append('<p class="note">Note: %s</p>' % esc(note))
-        parts.append('<table><tr><th>criterion</th><th>points</th><th>why</th></tr>')
+        parts.append('<div class="wide"><table><tr><th>criterion</th><th>points</th><th>why</th></tr>')
         for c in result['criteria']:
             why = _failure_text(c) or 'ok'   # hints too when it passed (a node that ignores Ctrl-C)
             seen = '' if c.get('visibility', 'visible') == 'visible' else ' (%s for the student)' % c['visibility']
             parts.append('<tr><td>%s</td><td class="%s num">%s / %s</td><td class="why">%s</td></tr>' % (
                 esc(c['title'] + seen), 'pass' if c['passed'] else 'fail', _points(c['points']),
                 _points(c['max_points']), esc(why)))
-        parts.append('</table>')
+        parts.append('</table></div>')
         pictures = [p for p in result.get('pictures', []) if os.path.isfile(os.path.join(folder, p))]
         if pictures:
             parts.append('<div class="pictures">')

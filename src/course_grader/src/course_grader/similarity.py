@@ -466,21 +466,21 @@ def html_section(out_dir):
     elif not result['pairs']:
         parts.append('<p>No pair.</p>')
     else:
-        parts.append('<table><tr><th>student</th><th>student</th><th>alike</th><th>shared lines</th></tr>')
+        parts.append('<div class="wide"><table><tr><th>student</th><th>student</th><th>alike</th><th>shared lines</th></tr>')
         for number, pair in enumerate(result['pairs']):
             parts.append('<tr><td>%s</td><td>%s</td><td class="num"><a href="#similar-%d">%d %%</a></td>'
                          '<td class="num">%d</td></tr>' % (esc(_who(pair['a'])), esc(_who(pair['b'])), number,
                                                           pair['percent'], pair['shared_lines']))
-        parts.append('</table>')
+        parts.append('</table></div>')
         for number, pair in enumerate(result['pairs']):
             runs = pair['runs'][:SHOWN_RUNS]
             parts.append('<h3 id="similar-%d">%s and %s: %d %%, %d shared lines</h3>'
-                         '<table style="table-layout: fixed; width: 100%%">' % (
+                         '<div class="wide"><table style="table-layout: fixed; width: 100%%">' % (
                 number, esc(_who(pair['a'])), esc(_who(pair['b'])), pair['percent'], pair['shared_lines']))
             parts.append('<tr><th>%s</th><th>%s</th></tr>' % (esc(_who(pair['a'])), esc(_who(pair['b']))))
             for run in runs:
                 parts.append('<tr>%s%s</tr>' % (_side_html(run['a']), _side_html(run['b'])))
-            parts.append('</table>')
+            parts.append('</table></div>')
             if len(pair['runs']) > len(runs):
                 parts.append('<p>%d runs more, not shown.</p>' % (len(pair['runs']) - len(runs)))
     for name, reason in result['unread']:
