@@ -11,10 +11,10 @@ rospy, and the student's devel/setup.bash."""
 import csv
 import os
 import re
-import shutil
 from concurrent.futures import ThreadPoolExecutor
 
 from course_common.process_table import command_line, marked_processes, new_mark, stop_marked
+from course_grader.feedback import heading_anchors
 from test_student_workspace import COURSE_DEVEL, ROOT, SLIDES
 
 PASTED = os.path.join(SLIDES, 'pasted')
@@ -74,19 +74,20 @@ def grade(student, lab):
     return int(float(row['score'])), int(float(row['max_score'])), row, output
 
 
-def check(student, lab, *options):
+def check(student, lab, *options, built=True):
     """The student's own check, in the student's terminal (the overlay's package, found by rospack):
-    the package it names and the lines it ends with."""
+    the package it names and the lines it ends with (and the build's time, when it built)."""
     status, output = run_leaving_nothing(student, 'rosrun course_grader check %s %s' % (lab, ' '.join(options)),
                                          timeout=900)
-    kept = re.search(r'^check: pictures and logs in (/\S+)$', output, re.M)
-    if kept:   # a folder of the check's own in /tmp
-        shutil.rmtree(os.path.dirname(kept.group(1)))
     assert status == 0, output[-3000:]
+    # Kept in the student's own ~/.ros, where the browser view shows it (course_web.last_check).
+    kept = re.search(r'^check: pictures and logs in (/\S+) \(the last 5 checks of each lab are kept\)$', output, re.M)
+    assert kept and kept.group(1).startswith(os.path.join(student.home, '.ros', 'course_check', lab, '')), output[-3000:]
+    assert os.path.isfile(os.path.join(os.path.dirname(kept.group(1)), 'check.json')), kept.group(1)
     print(output[-1500:])
     package = os.path.join(student.workspace, 'src', lab)
     assert 'check: grading the package at %s with the rubric of %s' % (package, lab) in output, output
-    assert re.search(r'^check: built in [0-9.]+ s$', output, re.M), output   # each step with its time
+    assert bool(re.search(r'^check: built in [0-9.]+ s$', output, re.M)) == built, output   # each step with its time
     assert output.rstrip().endswith("check: This is your own check: the teacher's run, in a container, "
                                     "is the one that counts."), output[-500:]
     return output
@@ -104,4 +105,56 @@ def full_marks_then_checked(student, lab, full, criterion):
     assert re.findall(r'^(PASS|FAIL) (\S+)', output, re.M) == [('PASS', criterion)], output[-2000:]
     assert re.search(r'^check: %s (\d+) / \1, the other criteria not checked \(\d+ s\)$' % criterion, output,
                      re.M), output
+    return output
+
+
+def section(page_path, anchor):
+    """The text of the section of a page (docs/...) whose heading has that anchor, down to the next
+    heading of its level or above; it must be there."""
+    with open(os.path.join(ROOT, page_path)) as text:
+        lines = text.read().split('\n')
+    headings = [(number, len(line) - len(line.lstrip('#'))) for number, line in enumerate(lines)
+                if re.match(r'#{1,6} ', line)]
+    anchors = heading_anchors('\n'.join(lines))
+    assert anchor in anchors, '%s has no section #%s (its anchors: %s)' % (page_path, anchor, anchors)
+    start, level = headings[anchors.index(anchor)]
+    end = next((number for number, depth in headings if number > start and depth <= level), len(lines))
+    return '\n'.join(lines[start:end])
+
+
+def criteria_printed(output):
+    """{criterion id: (PASS or FAIL, what the check printed under it)} of a check's output."""
+    blocks = re.split(r'^(?=PASS |FAIL |---- |check: )', output, flags=re.M)
+    found = {}
+    for block in blocks:
+        head = re.match(r'(PASS|FAIL) (\S+)', block)
+        if head:
+            found[head.group(2)] = (head.group(1), block)
+    return found
+
+
+def check_names_the_sections(student, lab, sections, built=True):
+    """The student's check of the package as the paste left it: each criterion it fails names the
+    section of the pages that explains why, or was not run because of another criterion. sections:
+    {criterion: (docs/PAGE.md#ANCHOR, [what the check's sentence and that section both quote, or
+    (the check's words, the page's words)])}: the anchor must be a heading of the page, and the
+    error text and line number the check reports must be the ones the page quotes."""
+    output = check(student, lab, built=built)
+    printed = criteria_printed(output)
+    for criterion, (verdict, block) in sorted(printed.items()):
+        if verdict == 'PASS':
+            assert criterion not in sections, (criterion, block)
+            continue
+        if criterion not in sections:
+            assert re.search(r'seen: not (run|checked): ', block), 'FAIL %s names no section:\n%s' % (criterion, block)
+            continue
+        named, quotes = sections[criterion]
+        links = re.findall(r'\b(docs/[\w/.-]+\.md#[\w-]+)', block)
+        assert named in links, '%s: %s not named in:\n%s' % (criterion, named, block)
+        text = section(*named.split('#'))
+        for quote in quotes:
+            in_check, in_page = quote if isinstance(quote, tuple) else (quote, quote)
+            assert in_check in block, '%s: the check does not say %r:\n%s' % (criterion, in_check, block)
+            assert in_page in text, '%s does not say %r, as the check does' % (named, in_page)
+    assert set(sections) <= set(printed), (sorted(sections), sorted(printed))
     return output

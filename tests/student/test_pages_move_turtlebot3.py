@@ -5,7 +5,9 @@ import re
 
 from course_common.processes import free_port, stop_process_group
 from course_common.waiting import wait_until
-from slides_and_pages import PASTED, full_marks_then_checked, make_package, quoted, slide
+from slides_and_pages import PASTED, check_names_the_sections, full_marks_then_checked, make_package, quoted, slide
+
+PAGE = 'docs/copying-the-slides/move_turtlebot3.md#'
 
 
 # The edits of docs/copying-the-slides/move_turtlebot3.md, "What a paste does", as text edits.
@@ -78,12 +80,31 @@ def test_move_turtlebot3_pasted_then_the_pages_edits_get_full_marks(student):
     make_package(student, 'catkin_create_pkg move_turtlebot3 rospy geometry_msgs sensor_msgs', lab)
     scripts = 'src/move_turtlebot3/scripts/'
 
-    def paste(script, *edits):
+    def paste(script, *edits, mode=0o755):
         text = slide(script + '.txt', PASTED)
         for edit in edits:
             text = edit(text)
         path = student.write(scripts + script, text)
-        os.chmod(path, 0o755)
+        os.chmod(path, mode)
+
+    # The student's check of the three as pasted: each failure with the page's section for it, the
+    # section quoting the line and error the check reports.
+    for script in ('trajectory.py', 'laser_data.py', 'avoid_obstacle.py'):
+        paste(script)
+    status, output = student.run('catkin_make')
+    assert status == 0, output[-3000:]
+    check_names_the_sections(student, lab, {
+        'executable': (PAGE + 'python3-not-python-in-the-first-line', [
+            '`#! /usr/bin/env python`', ("the lab's rubric gives this point only to a #! line that names `python3`",
+                                         'the grader gives the `executable` point only to a `#!` line that names '
+                                         'Python 3')]),
+        'trajectory_rate': (PAGE + '3-lost-underscores', ['line 4', 'from geometry msgs.msg import Twist',
+                                                          'SyntaxError: invalid syntax']),
+        'laser_data': (PAGE + '1-the-whole-paste-indented', ['line 2', 'IndentationError: unexpected indent',
+                                                             'unable to open X server', 'from: command not found']),
+        'avoid_stops': (PAGE + '2-a-string-cut-at-the-end-of-a-line', [
+            'line 8', "print('======", 'SyntaxError: unterminated string literal']),
+    })
 
     # Each step of the page's section on copying: (script, the edits made so far, what the run prints
     # that the page quotes).
@@ -99,12 +120,27 @@ def test_move_turtlebot3_pasted_then_the_pages_edits_get_full_marks(student):
          [r'laser_data\.py", line 9$', r"^SyntaxError: Missing parentheses in call to 'print'"]),
         ('trajectory.py', (underscores,),
          [r'trajectory\.py", line 14$', r'^IndentationError: unindent does not match']),
+        # Its prints fixed, avoid_obstacle.py stops at a line one space further in than the one above.
+        ('avoid_obstacle.py', (one_line_string, underscores, print_function),
+         [r'avoid_obstacle\.py", line 23$', r'^IndentationError: unexpected indent']),
     ]
     for script, edits, patterns in steps:
         paste(script, *edits)
         output = student.run('DISPLAY= rosrun move_turtlebot3 %s' % script, timeout=60)[1]
         for pattern in patterns:
             quoted(student, output, pattern, lab)
+
+    # The student's check of these: the same errors, the same sections; and the same file saved
+    # with Windows line endings (as an editor on Windows may) is named as such.
+    paste('trajectory.py', underscores, python3_line, lambda text: text.replace('\n', '\r\n'))
+    check_names_the_sections(student, lab, {
+        'executable': ('docs/student-docker.md#windows-line-endings', [
+            "/usr/bin/env: 'python3\\r': No such file or directory", "sed -i 's/\\r$//'"]),
+        'trajectory_rate': (PAGE + '4-indentationerror', [
+            'line 14', 'IndentationError: unindent does not match any outer indentation level']),
+        'laser_data': (PAGE + 'python-2-prints', ['line 9', 'print msg.ranges[0]']),
+        'avoid_stops': (PAGE + '4-indentationerror', ['line 23', 'IndentationError: unexpected indent']),
+    })
 
     # All edits but `msq`: the callback fails at every scan, against the simulator.
     paste('laser_data.py', column_one, one_line_string, underscores, four_spaces, print_function)
@@ -116,6 +152,17 @@ def test_move_turtlebot3_pasted_then_the_pages_edits_get_full_marks(student):
     quoted(student, student.output(laser), r'^NameError: name .msg. is not defined', lab)
     for process in (laser, world):
         stop_process_group(process)
+    # The student's check of it, and of avoid_obstacle.py with the same `msq`; trajectory.py done but
+    # its execute bit (as a copy through a Windows folder leaves it).
+    but_msq = (column_one, one_line_string, underscores, four_spaces, print_function)
+    paste('avoid_obstacle.py', *but_msq, publisher_first)
+    paste('trajectory.py', *but_msq, msg_not_msq, mode=0o644)
+    check_names_the_sections(student, lab, {
+        'executable': (PAGE + 'chmod-x', [('trajectory.py is not executable: run `chmod +x', 'chmod +x'),
+                                          ('docs/student-docker.md#lost-executable-bits', 'student-docker.md')]),
+        'laser_data': (PAGE + '5-msq-for-msg', ["NameError: name 'msg' is not defined", 'line 9']),
+        'avoid_stops': (PAGE + '5-msq-for-msg', ["NameError: name 'msg' is not defined", 'def callback(msq):']),
+    })
 
     # Every edit the page prescribes, then the teacher's grading.
     done = (column_one, one_line_string, underscores, four_spaces, print_function, msg_not_msq, python3_line)

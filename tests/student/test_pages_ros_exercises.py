@@ -8,7 +8,7 @@ import os
 import re
 import shutil
 
-from slides_and_pages import PASTED, full_marks_then_checked, make_package, quoted, slide
+from slides_and_pages import PASTED, check_names_the_sections, full_marks_then_checked, make_package, quoted, slide
 from test_student_workspace import ROOT
 
 
@@ -28,6 +28,11 @@ def test_ros_exercises_fig5_pasted_then_the_pages_edits_get_full_marks(student):
                     r'circle\.cpp:30:20: error: .geonetry_msgs. was not declared in this scope$',
                     r'circle\.cpp:34:6: error: .Spin. is not a member'):
         quoted(student, output, pattern, lab)
+    # The student's check names the page's section, which quotes the error the check reports.
+    check_names_the_sections(student, lab, {'builds': (
+        'docs/copying-the-slides/ros_exercises.md#what-a-paste-of-fig-5-does-first', [
+            ('circle.cpp line 3: #include expects "FILENAME" or <FILENAME>',
+             'circle.cpp:3:10: error: #include expects "FILENAME" or <FILENAME>')])}, built=False)
     # The include, with turtlesim's Pose.h below it: the errors the first build hid.
     student.edit(circle, '#include *geonetry_msgs/Twist.h"',
                  '#include "geometry_msgs/Twist.h"\n#include "turtlesim/Pose.h"')

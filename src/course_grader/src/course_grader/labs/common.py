@@ -100,7 +100,7 @@ class StudentNode:
         # Paths of the scratch workspace, as the student knows them: move_turtlebot3/scripts/...
         output = self.output_before_stop.replace(os.path.dirname(self.session.package_dir) + os.sep, '')
         return feedback.explain_run(self.session.relative(self.path), output, self.was_started,
-                                    self.stopped_cleanly, prints)
+                                    self.stopped_cleanly, prints, self.path, self.session.rubric.package)
 
 
 def run_each(session, runs, **given):

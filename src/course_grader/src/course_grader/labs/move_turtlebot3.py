@@ -107,7 +107,7 @@ def static_checks(session):
         if path is None:
             missing.append(name)
         else:
-            problems += feedback.script_problems(path, session.relative(path))
+            problems += feedback.script_problems(path, session.relative(path), package=session.rubric.package)
     if missing:
         problems.insert(0, 'missing: %s' % ', '.join(missing))
     if problems:

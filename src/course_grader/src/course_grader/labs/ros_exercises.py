@@ -15,6 +15,7 @@ from course_checks import figures, rates, turtle
 from course_checks.verdict import Verdict
 from course_common.waiting import Deadline
 from course_common.timing import Pacer
+from course_grader import feedback
 from course_grader.labs.common import LabRun, criteria_of, run_each
 from course_grader.labs.turtlesim_runs import SimulatedClock, TurtlesimLaunch, describe_launches
 from course_grader.wall_limit import NODES, READING
@@ -70,7 +71,8 @@ class Exercise(TurtlesimLaunch):
     def nothing(self, what):
         if self.unread:
             return 'expected `%s` to %s; seen: %s' % (self.command, what, self.unread)
-        return 'expected `%s` to %s; seen: %s' % (self.command, what, self.run.error_lines())
+        return 'expected `%s` to %s; seen: %s' % (self.command, what, feedback.paste_run_error(
+            self.session.rubric.package, self.run.output) or self.run.error_lines())
 
 
 class HeldClockDriver:
@@ -234,8 +236,10 @@ def check_circle(session):
             wrong, seen = (None if drawn.passed else drawn.reason), None
         if not wrong:
             printed = exercise.printed(r'Turtle subscriber@\[%s, %s, %s\]' % (NUMBER, NUMBER, NUMBER))
+            pasted = feedback.paste_run_error(session.rubric.package, exercise.run.output)
             judged = (turtle.printed_poses_published(printed, poses) if printed
-                      else Verdict(False, 'no line `Turtle subscriber@[x, y, theta]` printed'))
+                      else Verdict(False, 'no line `Turtle subscriber@[x, y, theta]` printed%s'
+                                   % ('; ' + pasted if pasted else '')))
             wrong, seen = (None, judged.reason) if judged.passed else (judged.reason, None)
         verdict = Verdict(not wrong, 'expected a circle of radius %g m around (%.2f, %.2f), with the pose '
                           'printed; seen %s' % (radius, centre[0], centre[1], wrong or 'it: ' + seen))
