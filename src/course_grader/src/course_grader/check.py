@@ -1,17 +1,23 @@
 """The student's command: `rosrun course_grader check LAB [PACKAGE_PATH] [--only ID]` grades the
 student's own package with the lab's rubric on this machine (the teacher's grading with
---no-container, same rubric, same verdicts) and prints each criterion in the terminal."""
+--no-container, same rubric, same verdicts) and prints each criterion in the terminal. What it
+showed, its pictures and its runs stay in ROS_HOME/course_check/LAB/ (course_web.last_check) for the
+browser view's "Your last check"."""
 import argparse
+import datetime
+import json
 import os
 import sys
-import tempfile
 import time
+import urllib.request
 
-from course_grader import results, rubric as rubrics
+from course_grader import replay, results, rubric as rubrics
+from course_grader.bags import BAG_SUFFIX
 from course_grader.grader import Grader
 from course_grader.sandbox import Options
 from course_grader.submission import package_name, terminal_text
 from course_common.processes import exit_on_terminate
+from course_web import last_check
 
 COUNTS = ('This is your own check: the teacher\'s run, in a container, is the one that counts.')
 
@@ -86,6 +92,50 @@ def total_text(result, due=None, everything=False, now=None):
     return '%g / %g%s' % (points, maximum, hidden_text)
 
 
+def summary(result, lab, package, runs, last_line, only=None, due=None, now=None):
+    """What check.json holds for the browser view (course_web.last_check): what print_result shows,
+    a hidden criterion as its title and why it is hidden, the pictures, the runs (replay_runs)."""
+    when = (now or datetime.datetime.now(datetime.timezone.utc)).astimezone()
+    criteria = []
+    for criterion in result['criteria']:
+        if only and criterion['id'] != only:
+            continue
+        shown = {key: criterion[key] for key in ('id', 'title')}
+        if results.shown_to_student(criterion, due, now):
+            shown.update({key: criterion[key] for key in ('passed', 'points', 'max_points', 'reason', 'hints')})
+        else:
+            shown['hidden'] = results.HIDDEN[criterion['visibility']]
+        criteria.append(shown)
+    return {'lab': lab, 'package': package, 'folder': result['folder'], 'criteria': criteria,
+            'total': last_line, 'error': result.get('error'), 'notes': result.get('notes', []),
+            'pictures': result.get('pictures', []), 'runs': runs, 'counts': COUNTS,
+            'when': when.strftime('%Y-%m-%d %H:%M:%S')}
+
+
+def replay_runs(student):
+    """Each run's rosbag in the student's folder made into RUN.replay.js for the browser's player:
+    [{run}], or {run, error} for one that cannot be played back."""
+    runs = []
+    for name in sorted(name for name in os.listdir(student) if name.endswith(BAG_SUFFIX)):
+        run = {'run': name[:-len(BAG_SUFFIX)]}
+        try:
+            replay.write_replay(os.path.join(student, name))
+        except replay.ReplayError as error:
+            run['error'] = str(error)
+        runs.append(run)
+    return runs
+
+
+def view_shows(address, check):
+    """Whether the browser view answers at address and shows this check (LAB/STAMP) as the last one."""
+    direct = urllib.request.build_opener(urllib.request.ProxyHandler({}))   # never through an http_proxy
+    try:
+        with direct.open(address + 'check/latest', timeout=2) as answer:
+            return json.load(answer).get('check') == check
+    except (OSError, ValueError, AttributeError):
+        return False
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog='rosrun course_grader check', description=__doc__)
     parser.add_argument('lab', help='the lab: %s' % ', '.join(rubrics.labs()))
@@ -101,12 +151,17 @@ def main(argv=None):
         if args.only and args.only not in known:
             raise CheckError('%s has no criterion %s; its criteria are %s' % (args.lab, args.only, ', '.join(known)))
         folder = find_student_package(args.lab, args.package_path)
+        checks = last_check.default_root()
+        try:
+            out = last_check.new_check_folder(checks, args.lab)
+        except OSError as error:
+            raise CheckError('cannot make a folder for the check in %s (%s): set ROS_HOME to a folder '
+                             'of yours' % (checks, error.strerror or error)) from None
     except (CheckError, rubrics.RubricError) as error:
         print('check: %s' % error, file=sys.stderr)
         return 2
     # Closing the terminal or `kill` stops the check as Ctrl-C does: with all it started.
     exit_on_terminate()
-    out = tempfile.mkdtemp(prefix='course-check-%s-' % args.lab)
     print('check: grading the package at %s with the rubric of %s, on this machine%s'
           % (folder, args.lab, ', the criterion %s only' % args.only if args.only else ''), flush=True)
     options = Options(only=args.only, on_step=lambda step: print('check: %s' % step, flush=True))
@@ -114,21 +169,31 @@ def main(argv=None):
     due = rubric.late.due() if rubric.late else None
     print_result(result, args.only, due)
     student = os.path.join(out, result['folder'])
-    print('check: pictures and logs in %s' % student)
-    kept = sorted(name for name in os.listdir(student) if name.endswith('.bag'))
-    if kept:
-        print('check: each run as a rosbag in %s; to play one in the browser (http://localhost:8080/):' % student)
-        for name in kept:
-            print('    roslaunch course_web replay.launch bag:=%s' % os.path.join(student, name))
-    for note in result.get('notes', []):
-        print('check: note: %s' % terminal_text(note, keep_lines=True))
+    runs = replay_runs(student)
     seconds = time.monotonic() - started
     if args.only:
         criterion = next(c for c in result['criteria'] if c['id'] == args.only)
-        print('check: %s %s, the other criteria not checked (%.0f s)' % (
+        last_line = '%s %s, the other criteria not checked (%.0f s)' % (
             args.only, '%g / %g' % (criterion['points'], criterion['max_points'])
-            if results.shown_to_student(criterion, due) else results.HIDDEN[criterion['visibility']], seconds))
+            if results.shown_to_student(criterion, due) else results.HIDDEN[criterion['visibility']], seconds)
     else:
-        print('check: total %s (%.0f s)' % (total_text(result, due), seconds))
+        last_line = 'total %s (%.0f s)' % (total_text(result, due), seconds)
+    last_check.write_summary(out, summary(result, args.lab, folder, runs, last_line, args.only, due))
+    last_check.point_latest(checks, out)
+    last_check.prune(checks, args.lab)
+    print('check: pictures and logs in %s (the last %d checks of each lab are kept)'
+          % (student, last_check.KEEP_PER_LAB))
+    for run in runs:
+        if run.get('error'):
+            print('check: the run %s cannot be replayed: %s' % (run['run'], run['error']))
+    address = 'http://localhost:%s/' % os.environ.get('COURSE_WEB_PORT', '8080')
+    if view_shows(address, os.path.relpath(out, checks)):
+        print('check: open %s (Your last check): this result, its pictures and each run played again' % address)
+    else:
+        print('check: to see this result, its pictures and each run played again in a browser: '
+              'roslaunch course_web view.launch, then open %s (Your last check)' % address)
+    for note in result.get('notes', []):
+        print('check: note: %s' % terminal_text(note, keep_lines=True))
+    print('check: %s' % last_line)
     print('check: %s' % COUNTS)
     return 0

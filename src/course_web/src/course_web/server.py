@@ -7,8 +7,9 @@ or stalled page skips states and nothing queues up for it. A frame's websocket m
 for all the pages that get it and handed to each page's socket in one non-blocking send (the web
 library's own path makes and buffers the message for each page: about 35 us more a frame and page).
 `on_pages` hears how many pages are connected, so that the ROS side listens to the simulators only
-while someone watches.
+while someone watches. check/ serves the student's last checks (course_web.last_check), read-only.
 """
+import json
 import logging
 import os
 import socket
@@ -22,6 +23,7 @@ import tornado.netutil
 import tornado.web
 import tornado.websocket
 
+from course_web import last_check
 from course_web.frames import NEW_PAGE
 from course_web.origin import host_allowed, origin_allowed
 from course_web.pacing import KeyBudget
@@ -48,6 +50,32 @@ class PageFiles(_HostChecked, tornado.web.StaticFileHandler):
         self.set_header('X-Frame-Options', 'DENY')
         self.set_header('Content-Security-Policy', "default-src 'self'; img-src 'self' data:; "
                         "connect-src 'self'; frame-ancestors 'none'")
+
+
+class CheckFiles(_HostChecked, tornado.web.RequestHandler):
+    """check/latest: {"check": "LAB/STAMP" or null}; check/LAB/STAMP/...: that check's known files."""
+
+    def get(self, path):
+        root = self.application.settings['checks_root']
+        self.set_header('Cache-Control', 'no-cache')
+        self.set_header('X-Content-Type-Options', 'nosniff')
+        self.set_header('Content-Security-Policy', "default-src 'none'; frame-ancestors 'none'")
+        if path == 'latest':
+            self.set_header('Content-Type', 'application/json; charset=utf-8')
+            self.finish(json.dumps({'check': last_check.latest_check(root)}))
+            return
+        found = last_check.served_file(root, path)
+        if found is None:
+            raise tornado.web.HTTPError(404)
+        file_path, content_type = found
+        try:
+            handle = os.open(file_path, os.O_RDONLY | os.O_NOFOLLOW)
+        except OSError:
+            raise tornado.web.HTTPError(404) from None
+        with os.fdopen(handle, 'rb') as stream:
+            body = stream.read()
+        self.set_header('Content-Type', content_type)
+        self.finish(body)
 
 
 class PageSocket(_HostChecked, tornado.websocket.WebSocketHandler):
@@ -132,7 +160,7 @@ class PageSocket(_HostChecked, tornado.websocket.WebSocketHandler):
 class ViewServer:
     """Serves the page and pushes frames; notify() may be called from any thread."""
 
-    def __init__(self, scenes, on_key, log, allowed_hosts=(), on_pages=None):
+    def __init__(self, scenes, on_key, log, allowed_hosts=(), on_pages=None, checks_root=None):
         self.scenes = scenes
         self.on_key = on_key
         self.log = log
@@ -144,9 +172,14 @@ class ViewServer:
         self._flush_lock = threading.Lock()
         self.app = tornado.web.Application([
             (r'/ws', PageSocket, {'server': self}),
+            # A check's player (replay.html) beside its folders, as in the teacher's report, so
+            # that it finds ../FOLDER/RUN.replay.js.
+            (r'/check/[^/]+/[^/]+/_player/(.*)', PageFiles, {'path': os.path.normpath(WEB_DIR)}),
+            (r'/check/(.*)', CheckFiles),
             (r'/(.*)', PageFiles, {'path': os.path.normpath(WEB_DIR), 'default_filename': 'index.html'}),
         ], websocket_max_message_size=MAX_TRANSPORT_BYTES, allowed_hosts=tuple(allowed_hosts),
-            log=log, websocket_ping_interval=10, websocket_ping_timeout=30)
+            log=log, checks_root=checks_root or last_check.default_root(),
+            websocket_ping_interval=10, websocket_ping_timeout=30)
         self.http = None
 
     def listen(self, port, address):
