@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The image's entry point: in an interactive container (docker run -it), the browser view of
-# whichever lab runs starts by itself, listening on port 8080 inside the container:
-#   docker run --rm -it -p 127.0.0.1:8080:8080 ros-course bash     then open http://localhost:8080/
+# whichever lab runs starts by itself, listening on port 8080 inside the container, which
+# `docker run -it -p 127.0.0.1:8080:8080 ...` publishes as http://localhost:8080/ (docs/student-docker.md).
 # COURSE_WEB=1 starts it without a terminal too, COURSE_WEB=0 never (tests, grading and CI run
 # without a terminal, so nothing extra joins their ROS graphs).
 if [ "${COURSE_WEB:-auto}" = 1 ] || { [ "${COURSE_WEB:-auto}" = auto ] && [ -t 0 ]; }; then

@@ -35,7 +35,7 @@ def assert_refused_in_one_sentence(result, *words):
     assert result.stdout == ''   # nothing installed, nothing built
     lines = result.stderr.splitlines()
     assert len(lines) == 1, result.stderr
-    for word in words + ('nothing was installed', 'tools/docker-test.sh'):
+    for word in words + ('nothing was installed', 'docs/student-docker.md'):
         assert word in lines[0], lines[0]
 
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the image from docker/ and runs the test command inside it (as the non-root user `student`),
-# then checks that the image serves the browser view of a lab to the outside (tools/docker-view-check.py).
+# then checks that the image serves the browser view of a lab to the outside (tools/docker-view-check.py)
+# and runs the students' Docker page, docs/student-docker.md, as written (tools/student-docker-check.py).
 # Usage: tools/docker-test.sh [SUITE]      (Debian suite of the image: trixie, the default, or bookworm)
 # tools/docker.sh reaches or starts the engine and makes the image; a dockerd started here is stopped.
 set -euo pipefail
@@ -14,3 +15,5 @@ echo "docker-test: running the tests in $image (user $(docker run --rm "$image" 
 docker run --rm --network host "$image" ./test.sh
 # The browser view as the image serves it (docker/entrypoint.sh), seen from outside the container.
 /usr/bin/python3 "$ROOT/tools/docker-view-check.py" "$image"
+# The students' page: their container, workspace, terminals, restarts (docs/student-docker.md).
+/usr/bin/python3 "$ROOT/tools/student-docker-check.py" "$image"

@@ -24,7 +24,7 @@ SUPPORTED_SUITES="trixie bookworm"
 OS_RELEASE="${COURSE_OS_RELEASE:-/etc/os-release}"
 PACKAGE_LIST="${COURSE_PACKAGE_LIST:-$ROOT/tools/debian-packages.txt}"
 REFUSED=3   # exit status when this machine cannot take the course; nothing was installed
-DOCKER_WAY_OUT="use the Docker image instead (tools/docker-test.sh; see docs/docker-and-ci.md)"
+DOCKER_WAY_OUT="use the Docker image instead (docs/student-docker.md)"
 
 # One field of os-release (shell-style KEY=value, value maybe quoted), empty when absent.
 os_release_field() {
