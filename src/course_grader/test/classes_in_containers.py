@@ -1,14 +1,17 @@
 """The example classes graded by ./grade.sh in containers, as a teacher runs it: every example's score
-and sentence (examples/grading/<lab>/expected.yaml), the hostile one included, archives, and a
-second grading into the same folder. Run by tools/grade-test.sh (CI, after the Docker test): not
-part of ./test.sh, which never runs the hostile examples."""
+and sentence (examples/grading/<lab>/expected.yaml), the hostile one included, the same grade every
+time the class is graded again, archives, and a second grading into the same folder. Run by
+tools/grade-test.sh (CI, after the Docker test): not part of ./test.sh, which never runs the hostile
+examples."""
 import csv
 import io
 import itertools
 import json
 import os
+import re
 import subprocess
 import tarfile
+import threading
 import zipfile
 
 import pytest
@@ -64,6 +67,21 @@ def grader_containers():
                               stdout=subprocess.PIPE, universal_newlines=True, check=True).stdout.split())
 
 
+# Each lab's first grading (test_example_class_in_containers), which the gradings again compare with.
+FIRST_GRADINGS = {}
+
+
+def verdicts(details):
+    """{student: (score, [(criterion, points, reason, hints)])}, every measured figure in the sentences
+    as '#': a run is real time, so the front beam at the stop reads 0.446 m one time and 0.451 m the
+    next; what must not change is the points and what each sentence says."""
+    def shape(text):
+        return re.sub(r'\d+(\.\d+)?', '#', text)
+    return {student: (result['score'], [(c['id'], c['points'], shape(c['reason']), [shape(h) for h in c['hints']])
+                                        for c in result['criteria']])
+            for student, result in details.items()}
+
+
 @pytest.mark.parametrize('lab', labs())
 def test_example_class_in_containers(lab, tmp_path):
     students = sorted(expected(lab))
@@ -79,6 +97,7 @@ def test_example_class_in_containers(lab, tmp_path):
     rows, details = read_results(out)
     assert sorted(rows) == students
     assert mismatches(lab, rows, details, students) == []
+    FIRST_GRADINGS[lab] = verdicts(details)
     assert outscored_twins(lab, rows) == []   # every attempt costs only the attempt
     # The model's nodes print what they print, and nothing of the sandbox (a ROS_HOME they cannot write).
     model_logs = [name for name in os.listdir(os.path.join(out, 'model')) if name.endswith('.log')]
@@ -104,6 +123,38 @@ def test_example_class_in_containers(lab, tmp_path):
     assert grader_containers() - before == set()
     for parent, _, names in os.walk(ROOT):
         assert 'hostile_was_here' not in names, parent
+
+
+@pytest.mark.parametrize('lab', labs())
+def test_the_same_grade_every_time(lab, tmp_path):
+    """The class graded twice more, both gradings at once (one submission at a time each: the load
+    of the first grading's two at a time): every student gets the same points for every criterion,
+    for the same reasons, all three times. Not `hostile`, the fork bomb and flood, whose grading is
+    the sandbox's limits running out: graded twice at once, my_turtle's took 11 minutes (its wall
+    limit) for the same 2 / 9; the first grading pins its score and sentences."""
+    students = sorted(s for s in expected(lab) if s != 'hostile')
+    folders = make_class(lab, str(tmp_path / 'class'))
+    if lab not in FIRST_GRADINGS:   # run alone (-k): the first grading here
+        out = str(tmp_path / 'first')
+        assert grade(lab, [folders[s] for s in students], out).returncode == 0
+        FIRST_GRADINGS[lab] = verdicts(read_results(out)[1])
+    outs = [str(tmp_path / ('again%d' % n)) for n in (2, 3)]
+    codes = {}
+    gradings = [threading.Thread(target=lambda o=out: codes.setdefault(o, grade(lab, [folders[s] for s in students],
+                                                                                 o, '--jobs', '1').returncode))
+                for out in outs]
+    for grading in gradings:
+        grading.start()
+    for grading in gradings:
+        grading.join()
+    assert codes == {out: 0 for out in outs}
+    first = FIRST_GRADINGS[lab]
+    for number, out in enumerate(outs, 2):
+        again = verdicts(read_results(out)[1])
+        assert sorted(again) == students
+        differences = ['%s: %r the first time, %r the grading number %d' % (s, first[s], again[s], number)
+                       for s in students if again[s] != first[s]]
+        assert differences == []
 
 
 def test_archives_and_grading_again_into_the_same_folder(archives, tmp_path):
