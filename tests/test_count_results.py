@@ -25,7 +25,18 @@ def test_a_failing_case_inside_a_rostest_counts_as_failed(tmp_path):
     write(tmp_path, 'rostest-test_square.xml', [('testsquare', '')])
     code, last, out = run_counter(tmp_path)
     assert (code, last) == (1, '1 passed, 1 failed')
-    assert 'FAILED: t.corners' in out
+    assert 'FAILED: t.corners\n    12 cm off\n' in out
+
+
+def test_a_failures_last_lines_are_printed_under_its_name(tmp_path):
+    traceback = '\n'.join(['Traceback (most recent call last):'] + ['  line %d' % n for n in range(10)] +
+                          ['AssertionError: 0.6 != 0.5'])
+    write(tmp_path, 'rosunit-square.xml', [('corners', '<failure message="off">%s</failure>' % traceback)])
+    write(tmp_path, 'rostest-test_square.xml', [('testsquare', '')])
+    out = run_counter(tmp_path)[2]
+    assert 'FAILED: t.corners\n' + ''.join('      line %d\n' % n for n in range(5, 10)) + \
+        '    AssertionError: 0.6 != 0.5\n' in out
+    assert 'Traceback' not in out
 
 
 def test_a_rostest_whose_node_died_counts_as_failed(tmp_path):

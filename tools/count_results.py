@@ -7,7 +7,8 @@ Usage: count_results.py RESULTS_DIR [--expect FILE]... [FAILED_STEP]...
                  A missing or empty one is a failure: a step that found no tests proves nothing.
   FAILED_STEP    a sentence naming a step that failed before it could write results.
 
-Every <testcase> counts once. A test case with <failure> or <error> failed; a <skipped> one is
+Every <testcase> counts once. A test case with <failure> or <error> failed (its last lines are
+printed under its name: CI's output is often all there is of a run); a <skipped> one is
 reported as skipped, and skips fail the run too: a test that did not run proves nothing.
 rostest writes two files per .test: rosunit-<test>.xml with the test node's own cases (the ones that
 count), and rostest-<file>.xml with one wrapper case `test<test>` per test node, which records no
@@ -36,6 +37,20 @@ def test_cases(path):
         return None
 
 
+# How many lines of a failure's message and traceback are printed under its name.
+WHY_LINES = 6
+
+
+def why_it_failed(case):
+    """The last lines of a failed case's <failure> or <error> (message and text), indented."""
+    found = case.find('failure')
+    found = found if found is not None else case.find('error')
+    text = '%s\n%s' % (found.get('message') or '', found.text or '')
+    lines = [line.rstrip()[:300] for line in text.replace('<![CDATA[', '').replace(']]>', '').splitlines()
+             if line.strip()]
+    return ''.join('\n    ' + line for line in lines[-WHY_LINES:])
+
+
 def count(folder, expected=()):
     passed, failed, skipped = [], [], []
     for path in result_files(folder):
@@ -47,7 +62,7 @@ def count(folder, expected=()):
         for case in cases:
             name = '%s.%s' % (case.get('classname', '?'), case.get('name', '?'))
             if case.find('failure') is not None or case.find('error') is not None:
-                failed.append(name)
+                failed.append(name + why_it_failed(case))
             elif wrapper:
                 failed.extend(_missing_node_results(path, case.get('name', '')))
             elif case.find('skipped') is not None:
