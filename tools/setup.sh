@@ -133,8 +133,11 @@ apt_install() {
 }
 
 BASE="${CATKIN_BUILD_BASE:-$ROOT}"
+# One catkin_make at a time in a build folder: two commands of this checkout at once (two ./grade.sh,
+# ./grade.sh beside ./test.sh) would otherwise break each other's build; the second waits.
 workspace_make() {
-    catkin_make --directory "$ROOT" --build "$BASE/build" \
+    mkdir -p "$BASE/build"
+    flock "$BASE/build/.catkin_make.lock" catkin_make --directory "$ROOT" --build "$BASE/build" \
         -DCATKIN_DEVEL_PREFIX="$BASE/devel" -DCMAKE_INSTALL_PREFIX="$BASE/install" \
         -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release \
         -DCATKIN_WHITELIST_PACKAGES="${CATKIN_WHITELIST:-}" "$@"
