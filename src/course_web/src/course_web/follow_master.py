@@ -15,7 +15,7 @@ import time
 
 import rosgraph
 
-from course_common.processes import stop_process_group
+from course_common.processes import exit_on_terminate, stop_process_group
 
 POLL = 0.5  # s
 VIEW_NODE = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'nodes', 'view')
@@ -62,6 +62,7 @@ def main(argv=None):
         serve_without_master(args[1])
         return
     port = args[0] if args else os.environ.get('COURSE_WEB_PORT', '8080')
+    exit_on_terminate()   # a `kill` stops the page's server or view it started (its finally)
     while True:
         if not master_online():
             idle = subprocess.Popen([sys.executable, '-m', 'course_web.follow_master', '--without-master', port],

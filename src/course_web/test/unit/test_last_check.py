@@ -3,6 +3,7 @@ of each check, the pointer to the latest, the few kept, and only their known fil
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -193,6 +194,10 @@ def test_without_a_master_follow_master_still_serves_the_last_check(tmp_path):
             assert json.load(answer) == {'check': 'move_turtlebot3/2026-11-28_12-00-00'}
         with urllib.request.urlopen('http://localhost:%d/' % port, timeout=5) as answer:
             assert b'last_check.js' in answer.read()
+        # A `kill` of follow_master alone (not its group) stops the server it started too.
+        follower.send_signal(signal.SIGTERM)
+        follower.wait(10)
+        wait_until(lambda: not port_open(port), 10, 'the page\'s server to stop with follow_master', poll=0.05)
     finally:
         assert stop_process_group(follower, timeout=10) is not None
     assert not port_open(port)
