@@ -330,7 +330,7 @@ def fix_a_script(laptop, first):
     os.makedirs(os.path.dirname(laptop.talker), exist_ok=True)
     give_to_student(os.path.dirname(laptop.talker))
     write_script(laptop.talker, '#!/usr/bin/env python3\nprint("hello from my_first_pkg")\n', '\r\n', 0o755)
-    for error, fix, spoil in (("/usr/bin/env: 'python3\\r': No such file or directory", 'crlf-fix',
+    for error, fix, spoil in (("env: 'python3\\r': No such file or directory", 'crlf-fix',
                                lambda: os.chmod(laptop.talker, 0o644)),
                               ("Couldn't find executable named talker.py", 'exec-fix', lambda: None)):
         status, output = first.run('rosrun my_first_pkg talker.py', status=None)

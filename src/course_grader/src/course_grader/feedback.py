@@ -132,7 +132,7 @@ def script_problems(path, display_name=None, python_commands=('python3',), packa
         command = words[-1] if through_env else (words[0] if words else '')
         interpreter = os.path.basename(command)
         if raw.endswith(b'\r\n'):
-            said = ("`/usr/bin/env: '%s\\r': No such file or directory`" % interpreter if through_env else
+            said = ("`env: '%s\\r': No such file or directory`" % interpreter if through_env else
                     '`%s^M: bad interpreter`' % command)
             problems.append('%s has Windows line endings (CRLF): rosrun stops at its #! line with %s; convert the '
                             'file with `sed -i \'s/\\r$//\' %s` (see %s)'
@@ -149,7 +149,7 @@ def _interpreter_sentence(display_name, first, command, interpreter, python_comm
     wanted = '#!/usr/bin/env %s' % python_commands[0]
     if not found:
         return ('%s line 1: `%s` asks for `%s`, which this machine does not have (rosrun says '
-                '`/usr/bin/env: \'%s\': No such file or directory`): write `%s`%s'
+                '`env: \'%s\': No such file or directory`): write `%s`%s'
                 % (display_name, first, interpreter or '(nothing)', interpreter, wanted, _see(package, 'python')))
     here = os.path.basename(os.path.realpath(found))
     runs = (' it runs here (`%s` is Python 3 on this machine), but' % interpreter
@@ -175,8 +175,9 @@ def _misplaced_shebang(path, display_name, package=None):
 # ImageMagick's screenshot command on Debian, `from` no command at all.
 _RUN_BY_THE_SHELL = re.compile(r'^(import(-im6\.q16)?: unable to open X server|.*: line \d+: from: command not found)',
                                re.M)
-# What env prints for a #! line that ends in a carriage return (a file saved with Windows line endings).
-_CRLF_SHEBANG = re.compile(r"^/usr/bin/env: \S?(\S+?)(\\r|\r)\S?: No such file or directory", re.M)
+# What env prints for a #! line that ends in a carriage return (a file saved with Windows line endings):
+# bookworm's coreutils names itself `/usr/bin/env:`, trixie's `env:`.
+_CRLF_SHEBANG = re.compile(r"^(?:/usr/bin/)?env: \S?(\S+?)(\\r|\r)\S?: No such file or directory", re.M)
 # Compiler and CMake errors a paste of the slides makes, and the mistake behind each (COPYING_SECTIONS).
 _PASTE_BUILD_ERRORS = (
     (re.compile(r'^\w+/\w+\.h: No such file or directory'), 'missing_header'),

@@ -56,21 +56,22 @@ def test_script_problems_execute_bit_shebang_and_python2_interpreter(tmp_path, m
     monkeypatch.setattr(feedback.shutil, 'which', lambda command: None)
     assert feedback.script_problems(slide) == [
         "b.py line 1: `#! /usr/bin/env python` asks for `python`, which this machine does not have (rosrun "
-        "says `/usr/bin/env: 'python': No such file or directory`): write `#!/usr/bin/env python3`"]
+        "says `env: 'python': No such file or directory`): write `#!/usr/bin/env python3`"]
 
 
 def test_windows_line_endings_are_named_with_what_rosrun_says(tmp_path):
     crlf = write(tmp_path, 'trajectory.py', '#!/usr/bin/env python3\r\nimport rospy\r\n')
     assert feedback.script_problems(crlf) == [
-        "trajectory.py has Windows line endings (CRLF): rosrun stops at its #! line with `/usr/bin/env: "
+        "trajectory.py has Windows line endings (CRLF): rosrun stops at its #! line with `env: "
         "'python3\\r': No such file or directory`; convert the file with `sed -i 's/\\r$//' trajectory.py` "
         "(see docs/student-docker.md#windows-line-endings)"]
-    said = "/usr/bin/env: 'python3\\r': No such file or directory\n"
-    assert feedback.explain_run('move_turtlebot3/scripts/t.py', said, False, None) == [
-        "move_turtlebot3/scripts/t.py does not start: `/usr/bin/env: 'python3\\r': No such file or directory`: "
-        "the file has Windows line endings (CRLF), and its #! line asks for `python3` and a carriage return; "
-        "convert the file with `sed -i 's/\\r$//' move_turtlebot3/scripts/t.py` "
-        "(see docs/student-docker.md#windows-line-endings)"]
+    # bookworm's env, then trixie's (which names itself `env` and adds a hint about -S).
+    for said in ("/usr/bin/env: 'python3\\r': No such file or directory\n",
+                 "env: 'python3\\r': No such file or directory\nenv: use -[v]S to pass options in shebang lines\n"):
+        assert feedback.explain_run('move_turtlebot3/scripts/t.py', said, False, None) == [
+            "move_turtlebot3/scripts/t.py does not start: `%s`: the file has Windows line endings (CRLF), and its "
+            "#! line asks for `python3` and a carriage return; convert the file with `sed -i 's/\\r$//' "
+            "move_turtlebot3/scripts/t.py` (see docs/student-docker.md#windows-line-endings)" % said.splitlines()[0]]
 
 
 def test_first_compiler_error_of_gcc_and_of_cmake():
