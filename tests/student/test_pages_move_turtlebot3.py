@@ -135,7 +135,7 @@ def test_move_turtlebot3_pasted_then_the_pages_edits_get_full_marks(student):
     paste('trajectory.py', underscores, python3_line, lambda text: text.replace('\n', '\r\n'))
     check_names_the_sections(student, lab, {
         'executable': ('docs/student-docker.md#windows-line-endings', [
-            "/usr/bin/env: 'python3\\r': No such file or directory", "sed -i 's/\\r$//'"]),
+            "env: 'python3\\r': No such file or directory", "sed -i 's/\\r$//'"]),
         'trajectory_rate': (PAGE + '4-indentationerror', [
             'line 14', 'IndentationError: unindent does not match any outer indentation level']),
         'laser_data': (PAGE + 'python-2-prints', ['line 9', 'print msg.ranges[0]']),
