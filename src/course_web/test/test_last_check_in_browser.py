@@ -58,6 +58,32 @@ class LastCheckInBrowserTest(ViewInBrowser):
         wait_until(lambda: self.script('return window.courseLastCheck.check') == self.check, 30,
                    'the page to show the check %s' % self.check)
 
+    def test_a_check_json_not_written_by_the_check_says_to_check_again(self):
+        # Runs first (by name), then puts the real check back: the other tests wait for it.
+        checks = os.path.join(self.ros_home, 'course_check')
+        for number, text in enumerate(('{"lab": "move_turtlebot3", "criteria": ', '{}', 'null')):
+            broken = '%s/2000-01-01_00-00-0%d' % (LAB, number)
+            os.makedirs(os.path.join(checks, broken))
+            with open(os.path.join(checks, broken, 'check.json'), 'w') as stream:
+                stream.write(text)
+            os.symlink(broken, os.path.join(checks, 'latest.broken'))
+            os.replace(os.path.join(checks, 'latest.broken'), os.path.join(checks, 'latest'))
+            wait_until(lambda: self.script('return window.courseLastCheck.check') == broken, 30,
+                       'the page to take up the check %s' % broken)
+            said = self.text('check-error')
+            self.assertTrue(said.startswith('This check (%s) cannot be shown: its check.json is not what the '
+                                            'check writes (' % broken), said)
+            self.assertTrue(said.endswith('). Run `rosrun course_grader check move_turtlebot3` again.'), said)
+            self.assertEqual(self.script('return document.querySelectorAll("#check-criteria li").length'), 0)
+            self.assertEqual(self.text('check-total'), '')
+            if number == 0:
+                self.browser.save_screenshot(os.path.join(self.shots, 'course_web-last-check-unreadable.png'))
+        os.symlink(self.check, os.path.join(checks, 'latest.back'))
+        os.replace(os.path.join(checks, 'latest.back'), os.path.join(checks, 'latest'))
+        self.wait_panel()
+        self.assertTrue(self.script('return document.getElementById("check-error").hidden'))
+        self.assertFalse(self.script('return document.getElementById("check-package-line").hidden'))
+
     def test_the_check_says_where_it_is_and_to_open_the_view(self):
         student = os.path.join(self.summary_folder, LAB)
         self.assertIn('check: pictures and logs in %s (the last 5 checks of each lab are kept)\n' % student,

@@ -36,6 +36,7 @@
   function show(check, summary) {
     const base = 'check/' + check.split('/').map(encodeURIComponent).join('/') + '/';
     const folder = base + encodeURIComponent(summary.folder) + '/';
+    $('check-package-line').hidden = false;
     $('check-lab').textContent = summary.lab;
     $('check-when').textContent = summary.when;
     $('check-package').textContent = summary.package;
@@ -71,13 +72,37 @@
     state.check = check;
   }
 
+  // A check.json that is not what the check writes (edited by hand, or by another version of the
+  // course): said in the panel, the rest of it emptied, and not read again until a newer check.
+  function unreadable(check, error) {
+    const [lab, stamp] = check.split('/');
+    for (const id of ['check-package', 'check-total', 'check-counts']) $(id).textContent = '';
+    $('check-package-line').hidden = true;
+    $('check-when').textContent = stamp;
+    for (const id of ['check-criteria', 'check-notes', 'check-pictures', 'check-runs']) $(id).replaceChildren();
+    $('check-lab').textContent = lab;
+    $('check-error').textContent = `This check (${check}) cannot be shown: its check.json is not what ` +
+      `the check writes (${error.message}). Run \`rosrun course_grader check ${lab}\` again.`;
+    $('check-error').hidden = false;
+    $('check-runs-part').hidden = true;
+    $('last-check').hidden = false;
+    state.check = check;
+  }
+
   async function refresh() {
     try {
       const latest = await (await fetch('check/latest', {cache: 'no-store'})).json();
       if (latest.check && latest.check !== state.check) {
         const answer = await fetch('check/' + latest.check.split('/').map(encodeURIComponent).join('/') + '/check.json',
                                    {cache: 'no-store'});
-        if (answer.ok) show(latest.check, await answer.json());  // not yet written: the next poll
+        if (answer.ok) {  // not yet written: the next poll
+          const text = await answer.text();
+          try {
+            show(latest.check, JSON.parse(text));
+          } catch (error) {
+            unreadable(latest.check, error);
+          }
+        }
       }
       state.error = null;
     } catch (error) {
