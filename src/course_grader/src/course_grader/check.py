@@ -5,20 +5,22 @@ showed, its pictures and its runs stay in ROS_HOME/course_check/LAB/ (course_web
 browser view's "Your last check"."""
 import argparse
 import datetime
+import importlib
 import json
 import os
 import sys
+import threading
 import time
 import urllib.request
 
-from course_grader import replay, results, rubric as rubrics
-from course_grader.bags import BAG_SUFFIX
+from course_grader import results, rubric as rubrics
 from course_grader.grader import Grader
 from course_grader.sandbox import Options
 from course_grader.submission import package_name, terminal_text
 from course_common.processes import exit_on_terminate
 from course_web import last_check
 
+BUILD_CACHE = '.build'   # in ROS_HOME/course_check: each lab's kept build (not a check: never pruned)
 COUNTS = ('This is your own check: the teacher\'s run, in a container, is the one that counts.')
 
 
@@ -115,6 +117,8 @@ def summary(result, lab, package, runs, last_line, only=None, due=None, now=None
 def replay_runs(student):
     """Each run's rosbag in the student's folder made into RUN.replay.js for the browser's player:
     [{run}], or {run, error} for one that cannot be played back."""
+    from course_grader import replay
+    from course_grader.bags import BAG_SUFFIX
     runs = []
     for name in sorted(name for name in os.listdir(student) if name.endswith(BAG_SUFFIX)):
         run = {'run': name[:-len(BAG_SUFFIX)]}
@@ -162,9 +166,14 @@ def main(argv=None):
         return 2
     # Closing the terminal or `kill` stops the check as Ctrl-C does: with all it started.
     exit_on_terminate()
+    # rosbag, which the replays need (a third of a second), imported while the session runs.
+    threading.Thread(target=importlib.import_module, args=('course_grader.replay',), daemon=True).start()
     print('check: grading the package at %s with the rubric of %s, on this machine%s'
           % (folder, args.lab, ', the criterion %s only' % args.only if args.only else ''), flush=True)
-    options = Options(only=args.only, on_step=lambda step: print('check: %s' % step, flush=True))
+    # The build of the last check of this lab kept (grading_session.BuildCache): catkin_make builds
+    # only what changed, as the student's own does; on all the machine's cores (one session).
+    options = Options(only=args.only, on_step=lambda step: print('check: %s' % step, flush=True),
+                      build_cache=os.path.join(checks, BUILD_CACHE, args.lab), build_jobs=os.cpu_count() or 1)
     result = Grader(rubric, out, options, announce=False).grade_one(folder)
     due = rubric.late.due() if rubric.late else None
     print_result(result, args.only, due)

@@ -8,8 +8,12 @@ student's processes, and the student's side runs as the user `student`: it canno
 folder, nor signal or trace this process, the master or the simulators. The result leaves as a tar
 stream on this process's standard output, which no process of the student's holds."""
 import argparse
+import fcntl
+import filecmp
 import functools
+import hashlib
 import os
+import shutil
 import pwd
 import subprocess
 import sys
@@ -150,27 +154,142 @@ def run_logged(side, argv, log_path, timeout, cwd=None):
     return run.process.returncode
 
 
-def build(session, scratch):
+# What decides how catkin_make configures a package: a change to one of these (or to the list of the
+# package's files) and a kept build (BuildCache) is thrown away, the package built afresh.
+BUILD_DESCRIPTION = ('CMakeLists.txt', 'package.xml', 'setup.py')
+BUILD_DESCRIPTION_FOLDERS = ('msg', 'srv', 'action', 'cfg')
+
+
+class BuildCache:
+    """The student's check only (on this machine, as the student): the workspace of the last check
+    of this lab kept in `folder`, so that catkin_make builds only what changed since, as the
+    student's own catkin_make does. It is used while the package's files are the same by name and
+    its build description (BUILD_DESCRIPTION, msg/, srv/, ...) the same to the byte: only the
+    contents of sources, scripts and launch files may differ, which make rebuilds from their
+    dates. A build that fails there is done again afresh (the verdict and its sentence are a fresh
+    build's, as the teacher's run has them). Held by one session at a time (a lock); another one
+    builds afresh in its scratch folder."""
+
+    def __init__(self, folder):
+        self.folder = os.path.abspath(folder)
+        self.workspace = os.path.join(self.folder, 'ws')
+        self._lock = None
+
+    def acquire(self):
+        """Whether this session holds the cache (kept until the session's process ends)."""
+        try:
+            os.makedirs(self.folder, mode=0o700, exist_ok=True)
+            lock = open(os.path.join(self.folder, 'lock'), 'w')
+        except OSError:
+            return False
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            lock.close()
+            return False
+        self._lock = lock
+        return True
+
+    @staticmethod
+    def key(package_dir):
+        """The package's file names and its build description's contents, as one digest; None for a
+        package holding anything but folders and regular files (a link: built afresh)."""
+        digest = hashlib.sha256()
+        for root, folders, files in os.walk(package_dir):
+            folders.sort()
+            for name in folders + files:
+                if os.path.islink(os.path.join(root, name)):
+                    return None
+            for name in sorted(files):
+                path = os.path.join(root, name)
+                relative = os.path.relpath(path, package_dir)
+                digest.update(b'F' + relative.encode(errors='surrogateescape') + b'\0')
+                top = relative.split(os.sep)[0]
+                if relative in BUILD_DESCRIPTION or top in BUILD_DESCRIPTION_FOLDERS or name.endswith('.cmake'):
+                    with open(path, 'rb') as stream:
+                        digest.update(hashlib.sha256(stream.read()).digest())
+        return digest.hexdigest()
+
+    def prepare(self, package_dir, package):
+        """The kept workspace with the package's files as they are now (files whose contents
+        changed copied, so dated now; the others untouched), or an empty one; its folder, or None
+        when the package cannot be kept (BuildCache.key)."""
+        key = self.key(package_dir)
+        if key is None:
+            return None
+        key_file = os.path.join(self.folder, 'key')
+        try:
+            with open(key_file) as stream:
+                kept = stream.read().strip() == key
+        except OSError:
+            kept = False
+        target = os.path.join(self.workspace, 'src', package)
+        if not kept or not os.path.isdir(target):
+            self.clear()
+            os.makedirs(os.path.join(self.workspace, 'src'))
+        for root, folders, files in os.walk(package_dir):
+            here = os.path.join(target, os.path.relpath(root, package_dir))
+            os.makedirs(here, exist_ok=True)
+            for name in files:
+                source, copy = os.path.join(root, name), os.path.join(here, name)
+                if not (os.path.isfile(copy) and filecmp.cmp(source, copy, shallow=False)):
+                    shutil.copy(source, copy)   # a new date: make rebuilds what depends on it
+                elif os.stat(source).st_mode != os.stat(copy).st_mode:
+                    shutil.copymode(source, copy)
+        with open(key_file, 'w') as stream:
+            stream.write(key + '\n')
+        return self.workspace
+
+    def clear(self):
+        for name in ('key', 'ws'):
+            path = os.path.join(self.folder, name)
+            if os.path.isdir(path) and not os.path.islink(path):
+                shutil.rmtree(path)
+            elif os.path.lexists(path):
+                os.remove(path)
+
+
+def build(session, scratch, cache=None, jobs=1):
     """catkin_make of the student's package in scratch/ws (an overlay of the course workspace), on
-    the student's side. Returns the environment of the built overlay, or raises BuildFailed."""
+    the student's side, `jobs` compilations at once; with `cache` (BuildCache, the student's check),
+    in the workspace kept there when it can. Returns the environment of the built overlay, or
+    raises BuildFailed."""
+    if cache is not None and cache.acquire():
+        try:
+            workspace = cache.prepare(session.package_dir, session.rubric.package)
+        except OSError:   # a full disk, a file it cannot read: built afresh, as without a cache
+            workspace = None
+        if workspace is not None:
+            try:
+                return _build(session, workspace, None, jobs)
+            except BuildFailed as failed:
+                cache.clear()
+                if failed.timed_out:   # a second build would take the session beyond its wall limit
+                    raise
+                # The verdict and its sentence are those of a fresh build.
+    return _build(session, os.path.join(scratch, 'ws'), session.package_dir, jobs)
+
+
+def _build(session, workspace, copy_from, jobs):
+    """catkin_make in `workspace`, after copying the package from `copy_from` (None: it is there)."""
     side = session.student_side
-    workspace = os.path.join(scratch, 'ws')
     package = os.path.join(workspace, 'src', session.rubric.package)
     log = session.log_path('build.log')
     seconds = session.rubric.limits['build_seconds']
     # ROS_HOME made here, by the student's user: rospy would give a log folder it makes the owner of
     # its parent (root's scratch folder), fail to, and print a warning into every node's output.
     # No build type, as the student's own catkin_make: unoptimised C++ builds in 80 % of the time.
-    code = run_logged(side, ['bash', '-c', 'mkdir -p "$1" "$2" "$3/src" && cp -R "$4" "$5" && exec catkin_make '
-                             '--directory "$3" -DPYTHON_EXECUTABLE=/usr/bin/python3 -j1',
+    copy = 'cp -R "$4" "$5" && ' if copy_from else ''
+    code = run_logged(side, ['bash', '-c', 'mkdir -p "$1" "$2" "$3/src" && %sexec catkin_make '
+                             '--directory "$3" -DPYTHON_EXECUTABLE=/usr/bin/python3 -j%d' % (copy, jobs),
                              'build', side.home, side.env['ROS_HOME'], workspace,
-                             session.package_dir, package],
+                             copy_from or '', package],
                       log, seconds)
     if code != 0:
         with open(log, errors='replace') as stream:
             text = stream.read()
         if code is None:
-            raise BuildFailed('catkin_make did not finish within %d s' % seconds)
+            raise BuildFailed('catkin_make did not finish within %d s' % seconds, timed_out=True)
         raise BuildFailed(feedback.first_compiler_error(text) or 'catkin_make failed (exit %d): see build.log' % code)
     session.package_dir = package
     listing = side.run(['bash', '-c', 'source "$1/devel/setup.bash" && env -0', 'env', workspace],
@@ -179,7 +298,9 @@ def build(session, scratch):
 
 
 class BuildFailed(Exception):
-    pass
+    def __init__(self, reason, timed_out=False):
+        super().__init__(reason)
+        self.timed_out = timed_out
 
 
 class Master:
@@ -220,9 +341,11 @@ class Master:
         together(functools.partial(rospy.signal_shutdown, 'graded'), functools.partial(self.process.stop, 15))
 
 
-def grade(rubric, package_dir, out_dir, scratch, student, student_user=None, only=None, deliver=None):
+def grade(rubric, package_dir, out_dir, scratch, student, student_user=None, only=None, deliver=None,
+          build_cache=None, build_jobs=1):
     """The result of the submission. deliver(result), when given, is called with it before the master
-    stops (the sandbox may end there: what is left of the trusted side ends with it)."""
+    stops (the sandbox may end there: what is left of the trusted side ends with it). `build_cache`
+    (a folder: the student's check only) and `build_jobs`: how the package is built (build)."""
     started = time.monotonic()
     side = StudentSide(student_user, scratch)   # its environment made before the master's URI is ours
     session = Session(rubric, package_dir, out_dir, side, only)
@@ -230,15 +353,20 @@ def grade(rubric, package_dir, out_dir, scratch, student, student_user=None, onl
     outcomes = dict(lab.static_checks(session))
     master = Master(os.path.join(out_dir, 'roscore.txt'))
     deliver = deliver or (lambda result: None)
+    discard_prepared = lambda: None   # noqa: E731 (what the lab prepared during the build, unused)
     try:
-        # The build on a thread of its own: the master comes up meanwhile.
+        # The build on a thread of its own: the master comes up meanwhile, and the lab prepares its
+        # simulators (labs/<lab>.prepare: nothing of the student's runs during the build).
         with ThreadPoolExecutor(max_workers=1) as pool:
-            building = pool.submit(build, session, scratch)
+            building = pool.submit(build, session, scratch, build_cache and BuildCache(build_cache), build_jobs)
             try:
                 master.ready()
+                if hasattr(lab, 'prepare'):
+                    discard_prepared = lab.prepare(session)
             finally:
                 overlay_env = building.result()
     except BuildFailed as error:
+        discard_prepared()
         side.stop_all()
         outcomes['builds'] = Verdict(False, str(error))
         result = results.score(rubric, outcomes, student, error='not run: the package does not build',
@@ -247,6 +375,7 @@ def grade(rubric, package_dir, out_dir, scratch, student, student_user=None, onl
         master.stop()
         return result
     except BaseException:
+        discard_prepared()
         master.stop()
         raise
     side.stop_all()
@@ -259,6 +388,7 @@ def grade(rubric, package_dir, out_dir, scratch, student, student_user=None, onl
     try:
         if master.process.ended():   # a process of the build shut it down (it could reach it)
             error = 'not run: the ROS master stopped during the build'
+            discard_prepared()
         else:
             outcomes.update(lab.run_checks(session))
         result = results.score(rubric, outcomes, student, error=error, pictures=session.pictures,
@@ -289,6 +419,9 @@ def main(argv=None):
     parser.add_argument('--student', required=True)
     parser.add_argument('--student-user', help='run the student\'s side as this user (we are root)')
     parser.add_argument('--only', metavar='ID', help='run only the checks of this criterion (the others: not checked)')
+    parser.add_argument('--build-cache', metavar='FOLDER',
+                        help='keep the build there for the next session of this lab (the student\'s check)')
+    parser.add_argument('--build-jobs', type=int, default=1, metavar='N', help='compilations at once (default: 1)')
     parser.add_argument('--send', action='store_true',
                         help='send the output folder as a tar stream on standard output at the end')
     args = parser.parse_args(argv)
@@ -313,7 +446,8 @@ def main(argv=None):
             # Sent: the sandbox may end now. The master's stop and rospy's own shutdown would cost a
             # second; what is left ends with the container (or, without one, by the grader's mark).
             os._exit(0)
-    grade(rubric, args.package, args.out, args.scratch, args.student, args.student_user, args.only, deliver)
+    grade(rubric, args.package, args.out, args.scratch, args.student, args.student_user, args.only, deliver,
+          args.build_cache, max(1, args.build_jobs))
     return 0
 
 

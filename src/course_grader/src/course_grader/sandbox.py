@@ -80,11 +80,16 @@ def limit_resources():
 class Options:
     """How the sessions of one grading run: `image` the course's image (None: on this machine,
     without isolation), `rubric_file` a teacher's own rubric (None: the lab's), `only` one
-    criterion's checks, `on_step` called with each step a session reports, as it ends."""
+    criterion's checks, `on_step` called with each step a session reports, as it ends. On this
+    machine only (on_host: the student's check), `build_cache` a folder of ours where the build is
+    kept for the next session of the lab and `build_jobs` the compilations at once
+    (grading_session.build)."""
     image: Optional[str] = None
     rubric_file: Optional[str] = None
     only: Optional[str] = None
     on_step: Optional[Callable[[str], None]] = None
+    build_cache: Optional[str] = None
+    build_jobs: int = 1
 
 
 @dataclass(frozen=True)
@@ -159,6 +164,10 @@ def on_host(grading, options):
     env = dict(os.environ, ROS_HOME=ros_home, **{RUN_MARK: mark})
     argv = SESSION + session_args(grading, options, os.path.join(grading.submission, grading.package),
                                   session_out, student_scratch)
+    if options.build_cache:
+        argv += ['--build-cache', options.build_cache]
+    if options.build_jobs > 1:
+        argv += ['--build-jobs', str(options.build_jobs)]
 
     def stop(process):
         stop_process_group(process, 10)
@@ -204,7 +213,6 @@ def _run_session(argv, grading, options, stop, **popen_args):
     """The session started with `argv`: its log (standard error) into staging/grader.txt, each step it
     reports to options.on_step as it comes, the tar stream it sends on standard output unpacked into
     staging. stop(process) ends it, whatever happened. Returns why there is no result, or None."""
-    limit = wall_limit_of(grading.rubric)
     log = os.path.join(grading.staging, 'grader.txt')
     sent = bytearray()
     with open(log, 'wb') as stream:
@@ -215,7 +223,10 @@ def _run_session(argv, grading, options, stop, **popen_args):
                    threading.Thread(target=copy_steps, args=(process.stderr, stream, options.on_step), daemon=True)]
         for reader in readers:
             reader.start()
+        limit = None
         try:
+            # Worked out once the session runs: it imports the lab's module (ROS), up to 0.7 s.
+            limit = wall_limit_of(grading.rubric)
             code = process.wait(limit)
         except subprocess.TimeoutExpired:
             code = None

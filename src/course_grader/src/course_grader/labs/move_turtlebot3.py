@@ -69,33 +69,41 @@ class PreparedSimulator:
 
 
 class Simulators:
-    """The fake_tb3 of each run ahead, each started while the run before stops."""
+    """The fake_tb3 of each run ahead: all of them while the package builds (prepare_all: nothing
+    of the student's runs then), or each while the run before stops."""
 
     def __init__(self, session, scripts):
         self.session = session
         self.logs = ['sim_%s.txt' % script.split('.')[0] for script in scripts]
-        self.ready = None
+        self.ready = []   # PreparedSimulator, in the order of the runs
 
     def prepare_next(self):
-        if self.ready is None and self.logs:
-            self.ready = PreparedSimulator(self.session, self.logs[0])
+        if not self.ready and self.logs:
+            self.ready.append(PreparedSimulator(self.session, self.logs[0]))
+            self.logs.pop(0)
+
+    def prepare_all(self):
+        """Every run's fake_tb3 started now, each waiting for its run (as many as can start)."""
+        while self.logs:
+            self.ready.append(PreparedSimulator(self.session, self.logs[0]))
             self.logs.pop(0)
 
     def take(self):
-        if self.ready and self.ready.launch.ended():   # prepared beside a fork bomb, say: again
-            self.ready.discard_fifo()
-            self.logs.insert(0, self.ready.log_name)
-            self.ready = None
+        if self.ready and self.ready[0].launch.ended():   # prepared beside a fork bomb, say: again
+            self.ready[0].discard_fifo()
+            self.logs.insert(0, self.ready.pop(0).log_name)
         self.prepare_next()
-        taken, self.ready = self.ready, None
-        return taken
+        return self.ready.pop(0) if self.ready else None
 
     def stop(self):
-        """The one prepared for a run that did not come (one that broke down before)."""
-        if self.ready:
-            self.ready.launch.stop(15)
-            self.ready.discard_fifo()
-            self.ready = None
+        """Those prepared for runs that did not come (after one that broke down, or a build that failed)."""
+        together(*[functools.partial(self._discard, prepared) for prepared in self.ready] or [lambda: None])
+        self.ready = []
+
+    @staticmethod
+    def _discard(prepared):
+        prepared.launch.stop(15)
+        prepared.discard_fifo()
 
 
 def static_checks(session):
@@ -379,8 +387,19 @@ RUNS = (
 CRITERIA = criteria_of(STATIC_CRITERIA, RUNS)
 
 
+def prepare(session):
+    """While the package builds: each run's fake_tb3 started and importing (half of its start),
+    then waiting for its run (PreparedSimulator). Returns what stops those no run took."""
+    session.simulators = Simulators(session, [run.name for run in will_run(session, RUNS)])
+    try:
+        session.simulators.prepare_all()
+    except OSError:
+        pass   # no process left: each run prepares its own when it starts
+    return session.simulators.stop
+
+
 def run_checks(session):
-    simulators = Simulators(session, [run.name for run in will_run(session, RUNS)])
+    simulators = getattr(session, 'simulators', None) or Simulators(session, [run.name for run in will_run(session, RUNS)])
     try:
         return run_each(session, RUNS, simulators=simulators)
     finally:

@@ -1,0 +1,121 @@
+#!/usr/bin/env python3
+"""The student's check (`rosrun course_grader check LAB PATH`) of the course's own model solutions,
+timed as a whole command, and its verdicts: each lab's check run in turn with course_grader as it
+was at git revision REV ("before", its package from `git archive`, first on the Python path) and as
+it is ("after"), each with nothing of the bench's beside it ("quiet") and beside a process that
+keeps one core busy. Prints the medians (min - max) of the wall times and whether every run gave
+the same verdicts: each criterion's pass, points and sentence (its figures left out: times and
+distances measured vary from run to run). Run after `source tools/env.sh`:
+
+    bench/check_bench.py [--before REV] [--rounds N] [--labs move_turtlebot3 ros_exercises my_turtle] [--quiet-only]
+
+Each build's first check of a lab is a warm-up, not counted: after it, "after" builds the package in
+the kept workspace of the last check (grading_session.BuildCache) as the student's next check
+would; --cold empties that before each of its checks (the first check after a change to the build
+description). About 5 minutes a round of the three labs with --before."""
+import argparse
+import json
+import os
+import re
+import shutil
+import signal
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import rospkg
+
+LABS = ('move_turtlebot3', 'ros_exercises', 'my_turtle')
+FIGURE = re.compile(r'-?\d+(\.\d+)?')
+
+
+def older_package(revision, folder):
+    """course_grader's Python package at `revision` in `folder`; the folder to put first on the path."""
+    root = subprocess.run(['git', 'rev-parse', '--show-toplevel'], stdout=subprocess.PIPE, text=True,
+                          cwd=os.path.dirname(os.path.abspath(__file__)), check=True).stdout.strip()
+    archive = subprocess.run(['git', 'archive', revision, 'src/course_grader/src'], stdout=subprocess.PIPE,
+                             cwd=root, check=True).stdout
+    subprocess.run(['tar', '-x', '-C', folder], input=archive, check=True)
+    return os.path.join(folder, 'src', 'course_grader', 'src')
+
+
+def verdicts(output):
+    """[(criterion, passed, points, sentence without its figures)] of the check's result.json."""
+    kept = re.search(r'^check: pictures and logs in (/\S+) ', output, re.M)
+    if not kept:
+        return [('no result', False, 0, output[-300:])]
+    with open(os.path.join(kept.group(1), 'result.json')) as stream:
+        result = json.load(stream)
+    return [(c['id'], c['passed'], c['points'], FIGURE.sub('#', c['reason'] or '')) for c in result['criteria']]
+
+
+def one_check(lab, package, python_path):
+    env = dict(os.environ)
+    if python_path:
+        env['PYTHONPATH'] = python_path + os.pathsep + env.get('PYTHONPATH', '')
+    started = time.monotonic()
+    done = subprocess.run(['rosrun', 'course_grader', 'check', lab, package], env=env, stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True)
+    return time.monotonic() - started, verdicts(done.stdout)
+
+
+def busy():
+    return subprocess.Popen(['/usr/bin/python3', '-c', 'while True: pass'])
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('--before', metavar='REV', help='course_grader at this git revision too, in turn')
+    parser.add_argument('--rounds', type=int, default=2)
+    parser.add_argument('--labs', nargs='+', default=list(LABS), choices=LABS)
+    parser.add_argument('--quiet-only', action='store_true', help='no runs beside a busy process')
+    parser.add_argument('--cold', action='store_true', help='"after" without the kept build of the last check')
+    args = parser.parse_args()
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(1))   # the busy process stopped with the bench
+    src = os.path.dirname(os.path.realpath(rospkg.RosPack().get_path('course_grader')))
+    cache = os.path.join(rospkg.get_ros_home(), 'course_check', '.build')
+    machines = ['quiet'] + ([] if args.quiet_only else ['one busy process'])
+    with tempfile.TemporaryDirectory(prefix='check_bench_') as folder:
+        builds = [('after', None)]
+        if args.before:
+            builds.insert(0, ('before', older_package(args.before, folder)))
+        times, seen = {}, {}
+        for lab in args.labs:
+            package = os.path.join(src, lab)
+            for build, path in builds:   # warm-up
+                one_check(lab, package, path)
+            for _ in range(args.rounds):
+                for machine in machines:
+                    spinner = busy() if machine != 'quiet' else None
+                    try:
+                        for build, path in builds:
+                            if args.cold and build == 'after':
+                                shutil.rmtree(os.path.join(cache, lab), ignore_errors=True)
+                            seconds, judged = one_check(lab, package, path)
+                            times.setdefault((lab, machine, build), []).append(seconds)
+                            seen.setdefault(lab, set()).add(tuple(judged))
+                            print('%s %s %s: %.1f s, %d / %d passed' % (lab, machine, build, seconds, sum(
+                                1 for v in judged if v[1]), len(judged)), file=sys.stderr, flush=True)
+                    finally:
+                        if spinner:
+                            spinner.kill()
+                            spinner.wait()
+    print('rounds: %d; load average at the end %s' % (args.rounds, ' '.join('%.1f' % x for x in os.getloadavg())))
+    print()
+    print('| lab | machine | build | wall, median (min - max) | same verdicts in every run |')
+    print('| --- | --- | --- | --: | --- |')
+    for (lab, machine, build), values in times.items():
+        print('| %s | %s | %s | %.1f s (%.1f - %.1f) | %s |' % (
+            lab, machine, build, statistics.median(values), min(values), max(values),
+            'yes' if len(seen[lab]) == 1 else 'NO: %d sets' % len(seen[lab])))
+    for lab, sets in seen.items():
+        if len(sets) > 1:
+            print('\n%s: the verdicts differ:' % lab)
+            for judged in sets:
+                print('  ', judged)
+
+
+if __name__ == '__main__':
+    main()
