@@ -7,6 +7,10 @@
 #                               base image with debootstrap when missing) and prints the image's name;
 #                               COURSE_IMAGE_NAME=name gives the image another name than ros-course
 #                               (two checkouts building side by side on one engine)
+#   course_docker_grading_image SUITE
+#                               the same for the grading image, ros-course-grader:SUITE (the Dockerfile's
+#                               target grader: what a grading needs and no more, the first layers of
+#                               ros-course:SUITE; NAME-grader with COURSE_IMAGE_NAME=NAME)
 # The Debian archive (and apt's proxy, if any) are the ones this machine's own apt uses, so a machine
 # behind a mirror or a proxy makes its images the same way. Needs root the first time (installs
 # docker.io and debootstrap).
@@ -136,7 +140,19 @@ _course_docker_base_image() {
 }
 
 course_docker_image() {
-    local suite="${1:-trixie}" image="${COURSE_IMAGE_NAME:-ros-course}:${1:-trixie}" proxy
+    _course_docker_build "${1:-trixie}" "${COURSE_IMAGE_NAME:-ros-course}:${1:-trixie}" ""
+}
+
+# The grading image's name: the course image's, ending in -grader (the only place it is made).
+course_docker_grading_image() {
+    _course_docker_build "${1:-trixie}" "${COURSE_IMAGE_NAME:-ros-course}-grader:${1:-trixie}" grader
+}
+
+# Builds the target $3 of docker/Dockerfile (its last, the students' image, when "") for suite $1 as
+# image $2, and prints $2.
+_course_docker_build() {
+    local suite=$1 image=$2 target=$3 proxy log
+    log="$COURSE_DOCKER_ROOT/build-${target:+$target-}$suite.log"
     if ! docker image inspect "debian:$suite" >/dev/null 2>&1; then
         _course_docker_base_image "$suite" || return 1
     fi
@@ -144,8 +160,8 @@ course_docker_image() {
     echo "docker: building $image" >&2
     # http_proxy is one of Docker's own build arguments: apt in the build uses it, the image keeps none.
     docker build --network host --build-arg "SUITE=$suite" ${proxy:+--build-arg "http_proxy=$proxy"} \
-        -t "$image" -f "$_course_docker_top/docker/Dockerfile" \
-        "$_course_docker_top" > "$COURSE_DOCKER_ROOT/build-$suite.log" 2>&1 \
-        || { tail -n 40 "$COURSE_DOCKER_ROOT/build-$suite.log" >&2; echo "docker: docker build failed" >&2; return 1; }
+        ${target:+--target "$target"} -t "$image" -f "$_course_docker_top/docker/Dockerfile" \
+        "$_course_docker_top" > "$log" 2>&1 \
+        || { tail -n 40 "$log" >&2; echo "docker: docker build failed" >&2; return 1; }
     echo "$image"
 }

@@ -4,6 +4,10 @@
 # Idempotent: with everything installed and nothing changed it only re-runs catkin_make (a few seconds).
 # Usage: tools/setup.sh                  install what is missing, then build
 #        tools/setup.sh --install-only   only install
+#        tools/setup.sh --install-only --grading
+#                                        only install what a grading needs (the grading image,
+#                                        docker/Dockerfile's target grader); --grading goes with
+#                                        --install-only, --check and --packages
 #        tools/setup.sh --check          say whether this machine can take the course; installs nothing
 #        tools/setup.sh --packages       print the package list for this machine's Debian suite
 #        tools/setup.sh --make TARGET... catkin_make of those targets (tests, run_tests, ...) in the
@@ -49,11 +53,16 @@ debian_suite() {
 
 # The package list for SUITE: plain lines for every suite, `SUITE: package` lines for that suite only.
 # PART: all (default), build (the lines above the first `# ----` line: what catkin_make needs) or
-# later (the lines below it).
+# later (the lines below it). With GRADING=1, only the lines above the `# ====` line (what a grading
+# needs).
+GRADING=0
 suite_packages() {
     local suite=$1 part=${2:-all} line section=build
     while IFS= read -r line || [ -n "$line" ]; do
-        case "$line" in "# ----"*) section=later ;; esac
+        case "$line" in
+            "# ----"*) section=later ;;
+            "# ===="*) [ "$GRADING" = 1 ] && break ;;
+        esac
         [ "$part" = all ] || [ "$part" = "$section" ] || continue
         line="${line%%#*}"
         line="$(echo "$line" | xargs)"
@@ -143,6 +152,13 @@ workspace_make() {
         -DCATKIN_WHITELIST_PACKAGES="${CATKIN_WHITELIST:-}" "$@"
 }
 
+# --grading, after the command's own option: the grading image's packages only.
+if [ "${2:-}" = --grading ]; then
+    case "${1:-}" in
+        --install-only|--check|--packages) GRADING=1; set -- "$1" ;;
+        *) echo "setup: --grading goes after --install-only, --check or --packages" >&2; exit 2 ;;
+    esac
+fi
 case "${1:-}" in
     --make)
         shift

@@ -79,7 +79,7 @@ def classroom_main(argv=None):
     parser.add_argument('lab', help='the lab: %s' % ', '.join(rubrics.labs()))
     parser.add_argument('folder', help='a new folder')
     parser.add_argument('--image', required=True,
-                        help='the course\'s image as the runners pull it, e.g. REGISTRY/OWNER/ros-course:bookworm')
+                        help='the course\'s image as the runners pull it, e.g. REGISTRY/OWNER/ros-course-grader:bookworm')
     args = parser.parse_args(sys.argv[1:] if argv is None else argv)
     try:
         written = write_classroom_template(rubrics.load(args.lab), args.folder, args.image)
