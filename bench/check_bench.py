@@ -18,7 +18,6 @@ import json
 import os
 import re
 import shutil
-import signal
 import statistics
 import subprocess
 import sys
@@ -26,6 +25,8 @@ import tempfile
 import time
 
 import rospkg
+
+from course_common.processes import exit_on_terminate
 
 LABS = ('move_turtlebot3', 'ros_exercises', 'my_turtle')
 FIGURE = re.compile(r'-?\d+(\.\d+)?')
@@ -73,7 +74,7 @@ def main():
     parser.add_argument('--quiet-only', action='store_true', help='no runs beside a busy process')
     parser.add_argument('--cold', action='store_true', help='"after" without the kept build of the last check')
     args = parser.parse_args()
-    signal.signal(signal.SIGTERM, lambda *_: sys.exit(1))   # the busy process stopped with the bench
+    exit_on_terminate()   # a kill stops the busy process with the bench (its finally)
     src = os.path.dirname(os.path.realpath(rospkg.RosPack().get_path('course_grader')))
     cache = os.path.join(rospkg.get_ros_home(), 'course_check', '.build')
     machines = ['quiet'] + ([] if args.quiet_only else ['one busy process'])

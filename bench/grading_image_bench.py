@@ -32,8 +32,6 @@ import argparse
 import os
 import re
 import shutil
-import signal
-import socket
 import subprocess
 import sys
 import tempfile
@@ -41,6 +39,9 @@ import time
 import urllib.request
 
 import yaml
+
+from course_common.processes import free_port, stop_process_group
+from course_common.waiting import poll_until
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ENV_SH = os.path.join(ROOT, 'tools', 'env.sh')
@@ -78,32 +79,11 @@ def compressed_bytes(image):
     return total
 
 
-def free_port():
-    with socket.socket() as probe:
-        probe.bind(('127.0.0.1', 0))
-        return probe.getsockname()[1]
-
-
 def wait_for(what, ready, process, seconds=60):
-    deadline = time.monotonic() + seconds
-    while time.monotonic() < deadline:
-        if process.poll() is not None:
-            raise SystemExit('%s ended (exit %d) before it answered' % (what, process.returncode))
-        if ready():
-            return
-        time.sleep(0.2)
-    raise SystemExit('%s did not answer within %d s' % (what, seconds))
-
-
-def stop(process, seconds=60):
-    """By its PID: SIGTERM, then SIGKILL if it outlives `seconds`."""
-    if process.poll() is None:
-        process.send_signal(signal.SIGTERM)
-        try:
-            process.wait(seconds)
-        except subprocess.TimeoutExpired:
-            process.kill()
-            process.wait()
+    if not poll_until(lambda: process.poll() is not None or ready(), seconds, poll=0.2):
+        raise SystemExit('%s did not answer within %d s' % (what, seconds))
+    if process.poll() is not None:
+        raise SystemExit('%s ended (exit %d) before it answered' % (what, process.returncode))
 
 
 def start_registry(folder):
@@ -120,7 +100,7 @@ def start_registry(folder):
                         'http': {'addr': '127.0.0.1:%d' % port}}, stream)
     log = open(os.path.join(folder, 'registry.log'), 'w')
     process = subprocess.Popen(['docker-registry', 'serve', config], stdout=log, stderr=subprocess.STDOUT,
-                               stdin=subprocess.DEVNULL)
+                               stdin=subprocess.DEVNULL, start_new_session=True)
 
     def answers():
         try:
@@ -139,7 +119,7 @@ def start_engine(folder):
         ['dockerd', '--data-root', os.path.join(folder, 'data'), '--exec-root', os.path.join(folder, 'exec'),
          '--pidfile', os.path.join(folder, 'dockerd.pid'), '--host', host, '--storage-driver', 'overlay2',
          '--iptables=false', '--ip-masq=false', '--bridge=none'],
-        stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
+        stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True)
     env = dict(os.environ, DOCKER_HOST=host)
     wait_for('the second dockerd', lambda: subprocess.run(['docker', 'version'], env=env, stdout=subprocess.DEVNULL,
                                                           stderr=subprocess.DEVNULL).returncode == 0, process)
@@ -253,9 +233,9 @@ def main():
         empty_engine(env, engine_folder)
     finally:
         if engine:
-            stop(engine)
+            stop_process_group(engine, 60)
         if registry:
-            stop(registry)
+            stop_process_group(registry, 60)
         shutil.rmtree(folder, ignore_errors=True)
     load = os.getloadavg()
     print('\n### The grading image (%s, %d cores, load %.1f at the end; %d run%s of each)\n'
