@@ -176,8 +176,8 @@ def _misplaced_shebang(path, display_name, package=None):
 _RUN_BY_THE_SHELL = re.compile(r'^(import(-im6\.q16)?: unable to open X server|.*: line \d+: from: command not found)',
                                re.M)
 # What env prints for a #! line that ends in a carriage return (a file saved with Windows line endings):
-# bookworm's coreutils names itself `/usr/bin/env:`, trixie's `env:`.
-_CRLF_SHEBANG = re.compile(r"^(?:/usr/bin/)?env: \S?(\S+?)(\\r|\r)\S?: No such file or directory", re.M)
+# bookworm's coreutils names itself as the #! line calls it (`/usr/bin/env:`, `/bin/env:`), trixie's `env:`.
+_CRLF_SHEBANG = re.compile(r"^(?:\S*/)?env: \S?(\S+?)(\\r|\r)\S?: No such file or directory", re.M)
 # Compiler and CMake errors a paste of the slides makes, and the mistake behind each (COPYING_SECTIONS).
 _PASTE_BUILD_ERRORS = (
     (re.compile(r'^\w+/\w+\.h: No such file or directory'), 'missing_header'),

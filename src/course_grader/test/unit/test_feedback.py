@@ -65,8 +65,9 @@ def test_windows_line_endings_are_named_with_what_rosrun_says(tmp_path):
         "trajectory.py has Windows line endings (CRLF): rosrun stops at its #! line with `env: "
         "'python3\\r': No such file or directory`; convert the file with `sed -i 's/\\r$//' trajectory.py` "
         "(see docs/student-docker.md#windows-line-endings)"]
-    # bookworm's env, then trixie's (which names itself `env` and adds a hint about -S).
+    # bookworm's env (named as the #! line calls it), then trixie's (`env`); both add a hint about -S.
     for said in ("/usr/bin/env: 'python3\\r': No such file or directory\n",
+                 "/bin/env: 'python3\\r': No such file or directory\n",
                  "env: 'python3\\r': No such file or directory\nenv: use -[v]S to pass options in shebang lines\n"):
         assert feedback.explain_run('move_turtlebot3/scripts/t.py', said, False, None) == [
             "move_turtlebot3/scripts/t.py does not start: `%s`: the file has Windows line endings (CRLF), and its "
