@@ -94,7 +94,10 @@ class BatchedConnection:
                 return True
             except OSError as error:  # as rospy: raised by the next write_data, which drops us
                 self._error = error
-                connection.close()
+                try:
+                    connection.close()   # closes the socket, then tells the topic
+                except Exception:  # noqa: BLE001  the topic, closed by rospy's shutdown meanwhile, fails
+                    pass           # to forget a connection (its listeners are None): nothing is left open
                 return False
             connection.stat_bytes += sent
             self._unsent = self._unsent[sent:]

@@ -105,6 +105,28 @@ def test_a_failed_connection_raises_at_the_next_write(pair):
         connection.write_data(message(1))
 
 
+class ClosedTopicTransport(Transport):
+    """A transport whose topic rospy's shutdown closed first: telling it fails, as rospy's
+    remove_connection does on a closed publisher (its subscriber_listeners are None)."""
+
+    def close(self):
+        self.done = True
+        self.socket.close()
+        raise TypeError("'NoneType' object is not iterable")
+
+
+def test_a_connection_failing_while_rospy_shuts_down_raises_nothing_in_the_flushing_thread(pair):
+    publisher_side, subscriber_side = pair
+    transport = ClosedTopicTransport(publisher_side)
+    connection = BatchedConnection(transport, queue_size=10)
+    subscriber_side.close()
+    connection.write_data(message(0))
+    WriterTurns().flush()   # the simulator's tick thread: a traceback here ended turtlesim's output
+    assert transport.done and publisher_side.fileno() == -1
+    with pytest.raises(OSError):
+        connection.write_data(message(1))
+
+
 class Message:
     _has_header = True
 
