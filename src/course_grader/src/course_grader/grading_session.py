@@ -167,12 +167,13 @@ class BuildCache:
     its build description (BUILD_DESCRIPTION, msg/, srv/, ...) the same to the byte: only the
     contents of sources, scripts and launch files may differ, which make rebuilds from their
     dates. A build that fails there is done again afresh (the verdict and its sentence are a fresh
-    build's, as the teacher's run has them). Held by one session at a time (a lock); another one
+    build's, as the teacher's run has them), unless it began from an empty workspace. Held by one session at a time (a lock); another one
     builds afresh in its scratch folder."""
 
     def __init__(self, folder):
         self.folder = os.path.abspath(folder)
         self.workspace = os.path.join(self.folder, 'ws')
+        self.fresh = True   # whether prepare() began from an empty workspace
         self._lock = None
 
     def acquire(self):
@@ -224,7 +225,8 @@ class BuildCache:
         except OSError:
             kept = False
         target = os.path.join(self.workspace, 'src', package)
-        if not kept or not os.path.isdir(target):
+        self.fresh = not kept or not os.path.isdir(target)
+        if self.fresh:
             self.clear()
             os.makedirs(os.path.join(self.workspace, 'src'))
         for root, folders, files in os.walk(package_dir):
@@ -264,7 +266,9 @@ def build(session, scratch, cache=None, jobs=1):
                 return _build(session, workspace, None, jobs)
             except BuildFailed as failed:
                 cache.clear()
-                if failed.timed_out:   # a second build would take the session beyond its wall limit
+                # A build begun from nothing is a fresh build already; a second one would take the
+                # session beyond its wall limit after a timeout.
+                if cache.fresh or failed.timed_out:
                     raise
                 # The verdict and its sentence are those of a fresh build.
     return _build(session, os.path.join(scratch, 'ws'), session.package_dir, jobs)

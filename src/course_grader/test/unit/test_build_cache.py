@@ -2,7 +2,11 @@
 the package's files are the same by name and its build description the same to the byte; a file
 whose contents changed is copied (dated now, so that make rebuilds it), the others left as they were."""
 import os
+import types
 
+import pytest
+
+from course_grader import grading_session
 from course_grader.grading_session import BuildCache
 
 
@@ -61,3 +65,28 @@ def test_one_session_at_a_time_holds_it(tmp_path):
     first, second = BuildCache(str(tmp_path / 'cache')), BuildCache(str(tmp_path / 'cache'))
     assert first.acquire()
     assert not second.acquire()
+
+
+def test_a_failed_build_is_done_again_afresh_only_when_it_began_from_a_kept_one(tmp_path, monkeypatch):
+    folder = package(str(tmp_path / 'p'), FILES)
+    builds = []
+
+    def failing_build(session, workspace, copy_from, jobs):
+        builds.append('kept' if copy_from is None else 'scratch')
+        raise grading_session.BuildFailed('first compiler error: a.cpp line 1: expected')
+
+    monkeypatch.setattr(grading_session, '_build', failing_build)
+    session = types.SimpleNamespace(package_dir=folder, rubric=types.SimpleNamespace(package='p'))
+    # The first check: the cache's workspace begins empty, so its failure is a fresh build's.
+    with pytest.raises(grading_session.BuildFailed, match='a.cpp line 1'):
+        grading_session.build(session, str(tmp_path / 'scratch'), BuildCache(str(tmp_path / 'cache')))
+    assert builds == ['kept']
+    # A build kept from a check before: its failure is checked by a fresh build.
+    cache = BuildCache(str(tmp_path / 'cache'))
+    assert cache.acquire()
+    cache.prepare(folder, 'p')
+    cache._lock.close()
+    builds.clear()
+    with pytest.raises(grading_session.BuildFailed):
+        grading_session.build(session, str(tmp_path / 'scratch'), BuildCache(str(tmp_path / 'cache')))
+    assert builds == ['kept', 'scratch']
