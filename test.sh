@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Runs every test of the workspace: ./test.sh        (or only some packages: ./test.sh turtlesim my_turtle)
 # Installs what is missing, builds, then runs the steps: the pure tests (a pytest per folder), the
-# workspace's pytests and the rostests, two (or three, on a quiet machine) at a time, the ones that
-# measure rates first, one at a time with one other held to one core beside them, and ends with one line
-# `N passed, N failed` (docs/testing.md).
+# workspace's pytests and the rostests, two (up to five, while the cores are idle) at a time, the ones
+# that measure rates first, one at a time with others held to one core beside them, and ends with one
+# line `N passed, N failed` (docs/testing.md).
 # Exit status 0 only if every step found its tests, ran them, and they all passed.
-# Environment: TEST_JOBS  how many slow steps run side by side (default auto: 2, and a third while a
-#                         core is idle; 1 = one after the other)
+# Environment: TEST_JOBS  how many slow steps run side by side (default auto: 2, and more while the
+#                         cores are idle enough for the next; 1 = one after the other)
 set -uo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 cd "$ROOT"
@@ -150,7 +150,7 @@ if [ -s "$jobs_file" ]; then
     if ! "$ROOT/tools/setup.sh" --make tests -j2 > "$LOGS/test_build.log" 2>&1; then
         tail -n 40 "$LOGS/test_build.log"; step_failures+=("building the tests (log $LOGS/test_build.log)")
     fi
-    echo "test: $(wc -l < "$jobs_file") steps (pytest folders and files, rostests), ${TEST_JOBS:-2 or 3} at a time (logs in ${LOGS#"$ROOT"/})"
+    echo "test: $(wc -l < "$jobs_file") steps (pytest folders and files, rostests), ${TEST_JOBS:-2 to 5} at a time (logs in ${LOGS#"$ROOT"/})"
     /usr/bin/python3 "$ROOT/tools/run_test_jobs.py" --jobs "${TEST_JOBS:-auto}" --logs "$LOGS" \
         --times "$BASE/build/test_durations.txt" --first-times "$ROOT/tools/test-step-seconds.txt" \
         --failed-steps "$LOGS/failed_steps.txt" < "$jobs_file" \

@@ -266,24 +266,52 @@ class FakeMachine:
         return self.idle_jiffies, self.total_jiffies
 
 
-def test_auto_runs_two_and_a_third_only_after_a_core_was_idle_for_the_window():
+def test_auto_runs_two_then_more_while_the_idle_time_and_their_last_shares_leave_room():
     jobs = load_run_test_jobs()
     machine = FakeMachine()
     side_by_side = jobs.SideBySide('auto', 2, window=3.0, sample=machine.sample, clock=lambda: machine.now)
-    assert side_by_side.room(0) and side_by_side.room(1)
+    assert side_by_side.spare([]) == side_by_side.spare([0.9]) == float('inf')
     side_by_side.started()
     machine.idle = 1.6
     machine.pass_seconds(1.0)
-    assert not side_by_side.room(2)  # idle, but not for the whole window yet
+    assert side_by_side.spare([0.3, 0.3]) == 0.0  # idle, but not for the whole window yet
     machine.pass_seconds(2.5)
-    assert side_by_side.room(2)
+    # 1.6 cores idle less the headroom; the two running are planned at 0.3 each: 1.35 left.
+    assert side_by_side.spare([0.3, 0.3]) == pytest.approx(1.35)
     side_by_side.started()
-    assert not side_by_side.room(3)  # never a fourth
-    # A busy core beside the tests (another user's loop): the third does not start.
-    machine.idle = 0.7
+    machine.pass_seconds(3.5)
+    # Two that computed in their last run (0.9 each): what they leave is what may start.
+    assert side_by_side.spare([0.9, 0.9]) == pytest.approx(0.2)
+    machine.pass_seconds(3.5)
+    assert side_by_side.spare([None, 0.3]) == pytest.approx(0.7)  # unknown: a whole core
+    machine.pass_seconds(3.5)
+    assert side_by_side.spare([0.2] * jobs.SideBySide.AUTO_MOST) == 0.0  # never more than AUTO_MOST
+    # A busy core beside the tests (another user's loop): nothing beyond the two starts.
+    machine.idle = 0.3
+    side_by_side.started()
     machine.pass_seconds(10.0)
-    assert not side_by_side.room(2)
-    assert side_by_side.room(1)
+    assert side_by_side.spare([0.3, 0.3]) < jobs.needs(0.0)
+    assert side_by_side.spare([0.3]) == float('inf')
+
+
+def test_the_first_waiting_job_that_fits_the_spare_share_starts():
+    jobs = load_run_test_jobs()
+    machine = FakeMachine()
+    side_by_side = jobs.SideBySide('auto', 2, window=3.0, sample=machine.sample, clock=lambda: machine.now)
+    known = {'builds': (90.0, 80.0), 'tour': (140.0, 35.0), 'grader': (50.0, 40.0), 'rates': (10.0, 9.0)}
+    share = lambda label: jobs.cpu_share(known, label)
+    waiting = [jobs.Job('builds', {0}, False, ''), jobs.Job('tour', {0}, False, ''),
+               jobs.Job('new', {0}, False, '')]
+    running = [jobs.Running(None, 'grader', {0}, False, None, 0.0, 'mark', None),
+               jobs.Running(None, 'rates', {0}, False, None, 0.0, 'mark', None)]
+    assert jobs.next_job(waiting, running[:1], side_by_side, None, share) == (0, None)  # the longest
+    machine.idle = 1.0
+    machine.pass_seconds(3.5)
+    # The two running are planned at 0.8 and 0.9, so 0.3 of a core may start: not the builds (0.89),
+    # the tour (0.25); an unknown job (a whole core) never.
+    assert jobs.next_job(waiting, running, side_by_side, None, share) == (1, None)
+    machine.pass_seconds(3.5)
+    assert jobs.next_job([waiting[0], waiting[2]], running, side_by_side, None, share) == (None, None)
 
 
 def test_a_fixed_number_of_jobs_never_grows():
@@ -292,7 +320,7 @@ def test_a_fixed_number_of_jobs_never_grows():
     machine.idle = 2.0
     side_by_side = jobs.SideBySide(1, 2, sample=machine.sample, clock=lambda: machine.now)
     machine.pass_seconds(60.0)
-    assert side_by_side.room(0) and not side_by_side.room(1)
+    assert side_by_side.spare([]) == float('inf') and side_by_side.spare([0.1]) == 0.0
 
 
 def test_a_first_run_starts_the_longest_steps_first_from_the_measured_seconds(tmp_path):
@@ -328,7 +356,7 @@ def test_beside_an_alone_job_more_jobs_share_its_core_only_while_their_last_cpu_
                jobs.Job('listener', {0}, False, '')]
     alone = jobs.Running(None, 'rates', {0}, True, None, 0.0, 'mark', None)
     tour = jobs.Running(None, 'tour', {0}, False, None, 0.0, 'mark', 1)
-    # 0.25 + 0.15 fits in 0.6; the builds (0.89) do not, the listener's share is unknown.
+    # 0.25 + 0.15 fits in 0.9; 0.25 + the builds' 0.89 does not, the listener's share is unknown.
     assert jobs.next_job(waiting, [alone, tour], side_by_side, 1, share) == (1, 1)
     teleop = jobs.Running(None, 'teleop', {0}, False, None, 0.0, 'mark', 1)
     assert jobs.next_job(waiting[:1] + waiting[2:], [alone, tour, teleop], side_by_side, 1, share) == (None, None)

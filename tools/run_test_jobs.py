@@ -7,20 +7,24 @@ JOBS has one job per line: `label<TAB>exit codes that mean "ran, results written
 Each rostest starts its own master on a free port, so independent .test files may run side by side.
 `alone` jobs run first, one at a time: tests that measure wall-clock rates and latencies (a 30 Hz
 topic's longest gap), which a second test free to use both cores of a 2-core machine would disturb.
-Beside them runs at most one of the others, held to one core (the last one) until the last alone job
+Beside them run some of the others, held to one core (the last one) until the last alone job
 has ended: an alone job then has at least one core to itself, which is what every test must hold
 with (another process keeping a core busy), and its minutes of waiting for real time are not lost
 to the others (with --jobs 1, or on a single core, nothing runs beside them).
-While an alone job runs, a second (and a third) job may join the one held to that core, when the CPU
-each used in the last run (its CPU seconds over its wall seconds, from FILE) leaves the core's sum at
-most BESIDE_SHARE: jobs that mostly wait for robots moving in real time share the core without
-making it busier than one process would.
-The others run N at a time; `--jobs auto` runs two, and a third while a whole core has been idle
-for the last few seconds (most steps wait for robots moving in real time, so on a quiet machine a
-third fits; on a shared or loaded one it does not start).
+While an alone job runs, more jobs may join the one held to that core while the shares of a core
+they used in their last run (CPU seconds over wall seconds, from FILE) sum to at most BESIDE_SHARE:
+jobs that mostly wait for robots moving in real time fill that core, and the alone job keeps the other.
+The others run N at a time; `--jobs auto` runs two, and more (up to SideBySide.AUTO_MOST) while the
+cores have room for the next: over the last few seconds the cores were idle for at least that job's
+share in its last run (a whole core when unknown) and HEADROOM more, and the running jobs' shares
+with it fit in the cores. Most steps wait for robots moving in real time (a quarter of a core), so
+on a quiet machine four or five run; on a loaded one the idle time is not there and two run, as
+with --jobs 2. The first waiting job that fits starts (the longest first; one that computes may
+wait while lighter ones fill an idle core).
 
 Prints one line per job as it ends (label, seconds, CPU seconds of all it ran, exit status), and
-under a job that failed the lines of its log that say why. Each job's whole output goes to DIR/<label>.log. The durations are
+under a job that failed the lines of its log that say why. Each job's whole output goes to
+DIR/<label>.log, and when each ran to DIR/timeline.txt. The durations are
 kept in FILE (`wall seconds<TAB>CPU seconds<TAB>label`), so that the next run starts the longest jobs first (on a first run, those of
 --first-times, measured once on a 2-core machine; jobs unknown to both come first). A job that ends
 with any other exit status is written to --failed-steps, one per line: its results are not to be
@@ -42,7 +46,14 @@ from course_common.processes import restore_ctrl_c
 from course_common.waiting import poll_until
 
 # How much of the held core the jobs beside an alone job may use together, from their last run.
-BESIDE_SHARE = 0.6
+BESIDE_SHARE = 0.9
+# A job that used at most this share of a core in its last run mostly waits (for robots moving in
+# real time): the first held beside an alone job is one of those, if any.
+MOSTLY_WAITS = 0.6
+# The least share of a core a shared job is taken to use beyond the first two (SideBySide.spare).
+LIGHTEST_SHARE = 0.25
+# The share of a core left idle when a job beyond the first two starts: their shares are averages.
+HEADROOM = 0.25
 # The lines of a rostest or pytest log that say what failed.
 WHY = re.compile(r'RESULT: FAIL|\[FAILURE\]|\[ERROR\] \[Testcase|^FAILED |^ERROR |Error:|'
                  r'timed out after|AssertionError|^E  ')
@@ -108,9 +119,11 @@ def idle_cores(before, after, cores):
 
 
 class SideBySide:
-    """How many shared jobs may run at once: `jobs`, or with jobs='auto' two, and a third once a
-    whole core was idle over the last `window` seconds (measured afresh after each start)."""
-    AUTO, AUTO_MOST = 2, 3
+    """How much of the cores one more shared job may use now: any while fewer than `jobs` run; with
+    jobs='auto', once two run, what both the cores' idle time over the last `window` seconds
+    (measured afresh after each start) and the running jobs' shares (from their last run) leave,
+    up to AUTO_MOST jobs."""
+    AUTO, AUTO_MOST = 2, 5
 
     def __init__(self, jobs, cores, window=3.0, sample=cpu_sample, clock=time.monotonic):
         self.auto = jobs == 'auto'
@@ -122,26 +135,39 @@ class SideBySide:
         """A job started: what it costs at its start must not count as idle time."""
         self.since = (self.clock(), self.sample())
 
-    def room(self, running):
-        if running < self.jobs:
-            return True
-        if not self.auto or running >= self.AUTO_MOST or self.clock() - self.since[0] < self.window:
-            return False
+    def spare(self, shares):
+        """The share of a core the next job may use (float('inf'): any); `shares`: the running
+        shared jobs' shares of a core in their last run (None: unknown, taken as a whole core)."""
+        if len(shares) < self.jobs:
+            return float('inf')
+        if not self.auto or len(shares) >= self.AUTO_MOST or self.clock() - self.since[0] < self.window:
+            return 0.0
         before, self.since = self.since, (self.clock(), self.sample())
-        return idle_cores(before[1], self.since[1], self.cores) >= 1.0
+        planned = self.cores - sum(needs(share) for share in shares)
+        return min(idle_cores(before[1], self.since[1], self.cores) - HEADROOM, planned)
+
+
+def needs(share):
+    """What a job is taken to use of a core, from its share in its last run: a whole core when
+    unknown, and never less than LIGHTEST_SHARE (its start, a master and nodes, is busier)."""
+    return 1.0 if share is None else max(share, LIGHTEST_SHARE)
 
 
 def next_job(waiting, running, side_by_side, beside_core, share=lambda label: None):
     """(index in `waiting` (Jobs) of the job to start now, the core it is held to or None), or (None,
     None) when none may start yet. `running`: the Running jobs. Alone jobs come first in `waiting`; each starts when no
     other alone job runs and nothing runs but jobs held to beside_core; beside an alone job (running
-    or next), one other job may run, held to beside_core (the first that used at most BESIDE_SHARE of
+    or next), one other job may run, held to beside_core (the first that used at most MOSTLY_WAITS of
     a core in its last run, if any did), and more of them while the shares of one core they used in
     their last run (`share(label)`, None if unknown) sum to at most BESIDE_SHARE."""
     running = list(running)
     alone_phase = waiting[0].alone or any(entry.alone for entry in running)
     if not alone_phase:
-        return (0, None) if side_by_side.room(len(running)) else (None, None)
+        spare = side_by_side.spare([share(entry.label) for entry in running])
+        for index, job in enumerate(waiting):
+            if needs(share(job.label)) <= spare:
+                return index, None
+        return None, None
     if waiting[0].alone and not any(entry.alone for entry in running):
         if all(entry.core is not None for entry in running):
             return 0, None  # nothing beside it but jobs held to the other core
@@ -152,7 +178,7 @@ def next_job(waiting, running, side_by_side, beside_core, share=lambda label: No
         return None, None
     if not held:
         # The longest that mostly waits, if one is known to: one that computes gets two cores later.
-        waits = [index for index in shared if (share(waiting[index].label) or 1.0) <= BESIDE_SHARE]
+        waits = [index for index in shared if (share(waiting[index].label) or 1.0) <= MOSTLY_WAITS]
         return (waits or shared)[0], beside_core
     used = [share(entry.label) for entry in held]
     if None in used:
@@ -216,6 +242,10 @@ def main():
     beside_core = usable[-1] if len(usable) > 1 and options.jobs != 1 else None
     widest = 0
     waiting, running, failed_steps, times = list(jobs), {}, [], dict(known)
+    # When each step ran, in seconds from here (how the steps were packed: docs/testing.md).
+    began = time.monotonic()
+    timeline = open(os.path.join(options.logs, 'timeline.txt'), 'w')
+    timeline.write('# start\tend\tCPU seconds\tstep (from the first start)\n')
     while waiting or running:
         while waiting:
             index, core = next_job(waiting, running.values(), side_by_side, beside_core,
@@ -259,6 +289,8 @@ def main():
         # The CPU time of the step and of every process it waited for (roslaunch's nodes included).
         cpu = usage.ru_utime + usage.ru_stime
         times[label] = (seconds, cpu)
+        timeline.write('%.1f\t%.1f\t%.1f\t%s\n' % (start - began, start - began + seconds, cpu, label))
+        timeline.flush()
         print('test: %s  (%.0f s, %.0f s CPU%s)' % (label, seconds, cpu,
                                                    '' if code == 0 else ', exit %d' % code), flush=True)
         if code != 0:
@@ -277,6 +309,7 @@ def main():
                 print('      left running: ' + line[:300])
             failed_steps.append('%s left %d process%s running (killed now): %s'
                                 % (label, len(left), '' if len(left) == 1 else 'es', '; '.join(left)[:1000]))
+    timeline.close()
     print('test: at most %d steps ran side by side' % widest, flush=True)
     with open(options.failed_steps, 'w') as out:
         out.writelines(step + '\n' for step in failed_steps)
