@@ -33,7 +33,7 @@ import rospy
 from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty, EmptyResponse
 
-from course_common import batched_writes, sim_record_ros
+from course_common import batched_writes, prompt_shutdown, sim_record_ros
 from course_common.request_queue import RequestQueue, Stopped
 from course_common.service_calls_ros import ServiceCallTopic
 from turtlesim import picture, shared_poll
@@ -169,6 +169,7 @@ class TurtlesimNode:
         # Ctrl-C is handled in main(): rospy's own handler could run while this thread registers
         # with the master and wait for a lock that this very thread holds.
         rospy.init_node('turtlesim', disable_signals=True)
+        prompt_shutdown.install()   # Ctrl-C ends it at once, as the original
         rospy.loginfo('Starting turtlesim with node name %s' % rospy.get_name())
         if file_limit < LOW_FILE_LIMIT:
             rospy.loginfo(capacity_note(file_limit, open_file_count() or 0))
