@@ -294,24 +294,26 @@ def test_auto_runs_two_then_more_while_the_idle_time_and_their_last_shares_leave
     assert side_by_side.spare([0.3]) == float('inf')
 
 
-def test_the_first_waiting_job_that_fits_the_spare_share_starts():
+def test_the_next_job_starts_when_its_share_fits_and_none_passes_it():
     jobs = load_run_test_jobs()
     machine = FakeMachine()
     side_by_side = jobs.SideBySide('auto', 2, window=3.0, sample=machine.sample, clock=lambda: machine.now)
-    known = {'builds': (90.0, 80.0), 'tour': (140.0, 35.0), 'grader': (50.0, 40.0), 'rates': (10.0, 9.0)}
+    known = {'builds': (90.0, 80.0), 'tour': (140.0, 35.0), 'grader': (50.0, 20.0), 'rates': (10.0, 3.0)}
     share = lambda label: jobs.cpu_share(known, label)
     waiting = [jobs.Job('builds', {0}, False, ''), jobs.Job('tour', {0}, False, ''),
                jobs.Job('new', {0}, False, '')]
     running = [jobs.Running(None, 'grader', {0}, False, None, 0.0, 'mark', None),
                jobs.Running(None, 'rates', {0}, False, None, 0.0, 'mark', None)]
-    assert jobs.next_job(waiting, running[:1], side_by_side, None, share) == (0, None)  # the longest
+    assert jobs.next_job(waiting, running[:1], side_by_side, None, share) == (0, None)  # two at least
     machine.idle = 1.0
     machine.pass_seconds(3.5)
-    # The two running are planned at 0.8 and 0.9, so 0.3 of a core may start: not the builds (0.89),
-    # the tour (0.25); an unknown job (a whole core) never.
-    assert jobs.next_job(waiting, running, side_by_side, None, share) == (1, None)
+    # 0.75 of a core may start (planned: 2 - 0.4 - 0.3): not the builds (0.89), and the tour (0.25),
+    # which would fit, does not pass them.
+    assert jobs.next_job(waiting, running, side_by_side, None, share) == (None, None)
     machine.pass_seconds(3.5)
-    assert jobs.next_job([waiting[0], waiting[2]], running, side_by_side, None, share) == (None, None)
+    assert jobs.next_job(waiting[1:], running, side_by_side, None, share) == (0, None)
+    machine.pass_seconds(3.5)
+    assert jobs.next_job(waiting[2:], running, side_by_side, None, share) == (None, None)  # unknown: a core
 
 
 def test_a_fixed_number_of_jobs_never_grows():

@@ -19,8 +19,8 @@ cores have room for the next: over the last few seconds the cores were idle for 
 share in its last run (a whole core when unknown) and HEADROOM more, and the running jobs' shares
 with it fit in the cores. Most steps wait for robots moving in real time (a quarter of a core), so
 on a quiet machine four or five run; on a loaded one the idle time is not there and two run, as
-with --jobs 2. The first waiting job that fits starts (the longest first; one that computes may
-wait while lighter ones fill an idle core).
+with --jobs 2. They start in order (the longest first): one that computes waits for its room,
+and lighter ones do not pass it.
 
 Prints one line per job as it ends (label, seconds, CPU seconds of all it ran, exit status), and
 under a job that failed the lines of its log that say why. Each job's whole output goes to
@@ -163,11 +163,10 @@ def next_job(waiting, running, side_by_side, beside_core, share=lambda label: No
     running = list(running)
     alone_phase = waiting[0].alone or any(entry.alone for entry in running)
     if not alone_phase:
+        # In order: a computing job that waits for room is not passed by lighter ones, which would
+        # keep the room from coming and leave it for the end, alone.
         spare = side_by_side.spare([share(entry.label) for entry in running])
-        for index, job in enumerate(waiting):
-            if needs(share(job.label)) <= spare:
-                return index, None
-        return None, None
+        return (0, None) if needs(share(waiting[0].label)) <= spare else (None, None)
     if waiting[0].alone and not any(entry.alone for entry in running):
         if all(entry.core is not None for entry in running):
             return 0, None  # nothing beside it but jobs held to the other core
