@@ -76,6 +76,21 @@ class ReplayInBrowser(unittest.TestCase):
         self.browser.find_element(By.CSS_SELECTOR, '.speeds button[data-speed="%s"]' % speed).click()
         self.browser.find_element(By.ID, 'play').click()
 
+    def pause_at(self, seconds):
+        """Pause (the play button) once the run has played `seconds`, from inside the page: a click
+        from here could come after the run ended, and play it again."""
+        self.browser.set_script_timeout(30)
+        played = self.browser.execute_async_script('''
+            const [seconds, done] = arguments;
+            const timer = setInterval(() => {
+                if (window.courseReplayState.time >= seconds) {
+                    clearInterval(timer);
+                    document.getElementById('play').click();
+                    done(window.courseReplayState.time);
+                }
+            }, 5);''', seconds)
+        self.assertLess(played, self.state()['duration'])
+
     def page_shot(self, name):
         self.browser.switch_to.default_content()
         self.browser.save_screenshot(os.path.join(self.shots, name))
@@ -105,8 +120,7 @@ class ReplayInBrowser(unittest.TestCase):
         self.assertEqual(ticks, [['1', '60%']])   # the stop, 6 s into 10
 
         self.play(2)
-        wait_until(lambda: self.state()['time'] >= 7.0, 20, 'the run to play past its stop (7 s)', poll=0.05)
-        self.browser.find_element(By.ID, 'play').click()   # pause
+        self.pause_at(7.0)
         state = self.state()
         self.assertFalse(state['playing'])
         self.assertGreater(float(self.script('return document.getElementById("slider").value')), 6.9)
