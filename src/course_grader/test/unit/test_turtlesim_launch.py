@@ -1,11 +1,13 @@
 """A student's launch file as the grader runs it: the turtlesim nodes it declares (name, namespace,
 remappings, private parameters, as roslaunch's loader reads them) are left out of what the student's
 side launches, and what reaches the trusted turtlesim is checked."""
+import pytest
 import roslaunch.config
+import roslaunch.core
 import roslaunch.xmlloader
 
 from course_grader.labs.turtlesim_runs import _node
-from course_grader.turtlesim_launch import leave_out_turtlesim, turtlesim_nodes
+from course_grader.turtlesim_launch import describe, leave_out_turtlesim, turtlesim_nodes
 
 LAUNCH = '''<launch>
   <arg name="colour" default="10"/>
@@ -54,3 +56,21 @@ def test_what_reaches_the_trusted_turtlesim_is_checked():
                                'params': {'background_g': 5}}
     assert _node({'name': '__master'}) is None
     assert _node(['not', 'a', 'node']) is None
+
+
+PACKAGE_XML = ('<package format="2"><name>lab</name><version>0.0.0</version><description>d</description>'
+               '<maintainer email="s@example.org">s</maintainer><license>BSD</license></package>')
+
+
+def test_describe_reads_a_package_s_launch_file_as_roslaunch_does(tmp_path, monkeypatch):
+    """describe(PACKAGE, FILE, ARGS): the package found on ROS_PACKAGE_PATH, its arguments given
+    or refused in roslaunch's own words, roscore's configuration left out (no node of it appears)."""
+    package = tmp_path / 'lab'
+    (package / 'launch').mkdir(parents=True)
+    (package / 'package.xml').write_text(PACKAGE_XML)
+    (package / 'launch' / 'exercise.launch').write_text(LAUNCH.replace('default="10"', ''))
+    monkeypatch.setenv('ROS_PACKAGE_PATH', str(tmp_path))
+    assert describe('lab', 'exercise.launch', ['colour:=7']) == [
+        {'name': '/lab/sim', 'remaps': [['turtle1/cmd_vel', 'robot/cmd_vel']], 'params': {'background_r': 7}}]
+    with pytest.raises(roslaunch.core.RLException, match="requires the 'colour' arg to be set"):
+        describe('lab', 'exercise.launch', [])
