@@ -19,6 +19,7 @@ git clone -q --no-hardlinks "$ROOT" "$clone/ws"
 proxy=$(_course_apt_proxy)
 echo "fresh-suite: ./test.sh in debian:$suite, a clone of $(git -C "$ROOT" rev-parse --short HEAD), load $(cut -d' ' -f1-3 /proc/loadavg)"
 start=$(date +%s)
+status=0
 docker run --rm --network host --cap-add NET_ADMIN --cap-add SYS_ADMIN ${proxy:+-e "http_proxy=$proxy"} \
     -v "$clone/ws:/ws" -w /ws "debian:$suite" ./test.sh 2>&1 \
     | while IFS= read -r line; do
@@ -26,6 +27,7 @@ docker run --rm --network host --cap-add NET_ADMIN --cap-add SYS_ADMIN ${proxy:+
             "test: building the tests"|*" passed, "*" failed"|*FAILED*|"test: at most"*)
                 printf '%4d s  %s\n' $(( $(date +%s) - start )) "$line" ;;
         esac
-    done
+    done || status=$?   # the suite's own status, after the time is printed
 seconds=$(( $(date +%s) - start ))
 printf 'fresh-suite: %d min %d s in all (load now %s)\n' $((seconds / 60)) $((seconds % 60)) "$(cut -d' ' -f1-3 /proc/loadavg)"
+exit "$status"

@@ -1,6 +1,5 @@
 """prompt_shutdown: rospy's shutdown wakes the node's registration thread instead of waiting for its
 half-second poll to see the flag. In a process of its own (rospy's shutdown is for good)."""
-import os
 import subprocess
 import sys
 
@@ -33,7 +32,7 @@ print(woken[-1])
 
 def shut_down(how):
     return subprocess.run([sys.executable, '-c', SHUT_DOWN, how], stdout=subprocess.PIPE,
-                          universal_newlines=True, env=dict(os.environ), timeout=30, check=True).stdout.strip()
+                          universal_newlines=True, timeout=30, check=True).stdout.strip()
 
 
 def test_the_registration_thread_is_woken_once_the_shutdown_flag_is_set():
