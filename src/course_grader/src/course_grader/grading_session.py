@@ -307,6 +307,15 @@ class BuildFailed(Exception):
         self.timed_out = timed_out
 
 
+def core_parameters():
+    """/rosversion and /rosdistro as roscore.xml sets them: what `rosversion roslaunch` and
+    `rosversion -d` print, the newline included."""
+    import rospkg.rosversion
+    version = rospkg.rosversion.get_version_from_package_name('roslaunch') or '<unversioned>'
+    distro = (os.environ.get('ROS_DISTRO') or rospkg.rosversion.get_distro_name_from_roscore() or 'Debian')
+    return {'/rosversion': version + '\n', '/rosdistro': distro + '\n'}
+
+
 class Master:
     """A ROS master of our own on a free port: rosmaster alone (roscore's roslaunch and rosout
     cost a second at the start and more at the end, and nothing of the grading reads /rosout),
@@ -328,6 +337,8 @@ class Master:
                 or self.process.ended():
             raise RuntimeError('the ROS master did not start on port %d' % self.port)
         master.setParam('/run_id', str(uuid.uuid1()))   # as roscore sets it (roslaunch reads it)
+        for name, value in core_parameters().items():   # the student's roslaunch does not set them
+            master.setParam(name, value)
         master.setParam('/use_sim_time', False)
         rospy.init_node('course_grader', disable_signals=True)
 

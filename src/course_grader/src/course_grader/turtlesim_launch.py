@@ -8,7 +8,9 @@ build (a `sitecustomize.py` in devel/, a library) runs inside it.
       it declares, as roslaunch's own loader reads it (the arguments included), or why it could not;
   python3 -m course_grader.turtlesim_launch launch [ROSLAUNCH OPTIONS] PACKAGE FILE [NAME:=VALUE ...]
       is `roslaunch` with those nodes and their private parameters left out; it starts the other
-      nodes as roslaunch would.
+      nodes as roslaunch would. roscore.xml is not read: the grader's master has its parameters
+      (grading_session.Master) and rosout is a core node, which roslaunch starts only with a master
+      of its own.
 """
 import json
 import sys
@@ -59,9 +61,21 @@ def leave_out_turtlesim(config):
     return [full_name(node) for node in left_out]
 
 
-class _WithoutTurtlesim(roslaunch.parent.ROSLaunchParent):
+def _without_roscore_xml(loader, config, verbose=True):
+    """In place of roslaunch.config.load_roscore: its two `rosversion` commands cost 0.18 s a run."""
+
+
+class WithoutTurtlesim(roslaunch.parent.ROSLaunchParent):
+    """roslaunch's parent process, its configuration read without roscore.xml and its turtlesim
+    nodes left out."""
+
     def _load_config(self):
-        super()._load_config()
+        load_roscore = roslaunch.config.load_roscore
+        roslaunch.config.load_roscore = _without_roscore_xml
+        try:
+            super()._load_config()
+        finally:
+            roslaunch.config.load_roscore = load_roscore
         leave_out_turtlesim(self.config)
 
 
@@ -97,7 +111,7 @@ def main(argv=None):
             print(line, flush=True)
         return 0
     if argv[:1] == ['launch']:
-        roslaunch.parent.ROSLaunchParent = _WithoutTurtlesim
+        roslaunch.parent.ROSLaunchParent = WithoutTurtlesim
         sys.argv = ['roslaunch'] + argv[1:]   # roslaunch's loader reads NAME:=VALUE from sys.argv
         return roslaunch.main(sys.argv)
     sys.exit(__doc__)

@@ -7,7 +7,8 @@ import roslaunch.core
 import roslaunch.xmlloader
 
 from course_grader.labs.turtlesim_runs import _node
-from course_grader.turtlesim_launch import describe, leave_out_turtlesim, turtlesim_nodes
+from course_grader.grading_session import core_parameters
+from course_grader.turtlesim_launch import WithoutTurtlesim, describe, leave_out_turtlesim, turtlesim_nodes
 
 LAUNCH = '''<launch>
   <arg name="colour" default="10"/>
@@ -74,3 +75,18 @@ def test_describe_reads_a_package_s_launch_file_as_roslaunch_does(tmp_path, monk
         {'name': '/lab/sim', 'remaps': [['turtle1/cmd_vel', 'robot/cmd_vel']], 'params': {'background_r': 7}}]
     with pytest.raises(roslaunch.core.RLException, match="requires the 'colour' arg to be set"):
         describe('lab', 'exercise.launch', [])
+
+
+def test_the_student_s_roslaunch_reads_no_roscore_xml_and_the_master_has_its_parameters(tmp_path):
+    """What the student's side launches: the file's own nodes and parameters, without turtlesim and
+    without roscore.xml's; the grader's master sets those as roscore.xml would."""
+    path = tmp_path / 'exercise.launch'
+    path.write_text(LAUNCH)
+    parent = WithoutTurtlesim('run', [str(path)], is_core=False)
+    parent._load_config()
+    assert sorted(parent.config.params) == ['/circle/speed', '/shared']
+    assert sorted(node.namespace + node.name for node in parent.config.nodes) == ['/circle', '/turtlesim']
+    assert parent.config.nodes_core == []
+    roscore = roslaunch.config.ROSLaunchConfig()
+    roslaunch.config.load_roscore(roslaunch.xmlloader.XmlLoader(), roscore, verbose=False)
+    assert core_parameters() == {name: param.value for name, param in roscore.params.items()}

@@ -1,6 +1,7 @@
 """The lab report's exercises (seed 002): ros_exercises' launch files exercise1..5 on the course's
 turtlesim (started by the grader in place of the launch file's own, labs.turtlesim_runs), with the
 checks of course_checks that ros_exercises' own tests use."""
+import collections
 import functools
 import re
 import threading
@@ -82,7 +83,9 @@ class HeldClockDriver:
     its stamp on that clock."""
     STEP_NS = 4000000   # 250 per simulated second, as turtlesim's /clock
     PATIENCE = 1.0      # wall seconds a message due may take: a publisher kept that long from the processor
-    CREEP = 0.01        # wall seconds a creeping clock waits after a step for a message sent at it
+    CREEP = 0.01        # wall seconds a creeping clock waits after a step for a message sent at it, at most:
+    CREEP_LEAST = 0.002  # three times the longest of the last LATENCIES messages' way from a step to here,
+    LATENCIES = 10      # at least this (on a quiet machine 0.5 - 1 ms: the creep was 10 ms a step)
 
     def __init__(self, topic, message_class, period, real_time_factor, settling):
         self.clock = rates.HeldClock(int(round(period * 1e9)), self.STEP_NS, settling)
@@ -90,9 +93,11 @@ class HeldClockDriver:
         self.heard_one = threading.Event()
         self.stopped = threading.Event()
         self.entries = []   # (stamp on the clock, message)
+        self.latencies = collections.deque(maxlen=self.LATENCIES)   # wall seconds from a step to its message heard
         self.clock_pub = rospy.Publisher('/clock', Clock, queue_size=10)
         self.subscriber = rospy.Subscriber(topic, message_class, self._heard, queue_size=1000)
         self.pacer = Pacer(real_time_factor, time.monotonic())
+        self.stepped_at = time.monotonic()   # when the last step was published
         self.thread = threading.Thread(target=self._run, name='held-clock', daemon=True)
         self.thread.start()
 
@@ -105,13 +110,15 @@ class HeldClockDriver:
         self.heard_one.set()
 
     def _run(self):
-        while not self.stopped.is_set():
+        while True:
             self.heard_one.clear()
+            if self.stopped.is_set():   # after the clearing: close() sets the event after the flag
+                return
             with self.lock:
                 now_ns = self.clock.next_ns()
                 holding, creeping = self.clock.holding(), self.clock.creeping()
             if now_ns is None:
-                if holding and not self.heard_one.wait(self.PATIENCE):
+                if holding and not self._heard_within(self.PATIENCE):
                     with self.lock:
                         if self.clock.holding():
                             self.clock.give_up()
@@ -121,12 +128,28 @@ class HeldClockDriver:
                 self.stopped.wait(delay)
             self.pacer.reached(now_ns, time.monotonic())
             self.clock_pub.publish(Clock(rospy.Time(0, now_ns)))
+            self.stepped_at = time.monotonic()
             if creeping:
-                self.heard_one.wait(self.CREEP)
+                self._heard_within(self.creep())
                 self.pacer.hold(now_ns, time.monotonic())
+
+    def creep(self):
+        """How long to wait after a step for a message sent at it: the way of the last messages, with room."""
+        if not self.latencies:
+            return self.CREEP
+        return min(self.CREEP, max(self.CREEP_LEAST, 3 * max(self.latencies)))
+
+    def _heard_within(self, seconds):
+        """Whether a message came within `seconds`; if so, how long after the last step it was heard
+        is one of the latencies (the message was due at that step, or sent at it while creeping)."""
+        if not self.heard_one.wait(seconds):
+            return False
+        self.latencies.append(time.monotonic() - self.stepped_at)
+        return True
 
     def close(self):
         self.stopped.set()
+        self.heard_one.set()   # a clock holding for a message waits no longer (PATIENCE)
         self.thread.join()
         self.subscriber.unregister()
         self.clock_pub.unregister()

@@ -18,6 +18,7 @@ from rosgraph_msgs.msg import Clock
 from turtlesim.msg import Pose
 
 from course_checks.recorded import PublisherLook, RecordedTopic, Records
+from course_checks.robot import node_names
 from course_checks.verdict import Verdict
 from course_common.waiting import wait_for
 from course_grader import bags, wall_limit
@@ -131,6 +132,7 @@ class TurtlesimLaunch:
             self.start_turtlesim(node, real_time_factor, picture if index == 0 else None, wait=False,
                                  lock_step=lock_step)
         # The rest starts beside turtlesim, as roslaunch starts a file's nodes: none waits for another.
+        self.known_nodes = node_names()
         self.run = session.student(LAUNCHER + ['launch', session.rubric.package, launch_file] + list(args), log_name)
         for name in list(self.simulators):
             self.wait_for_turtlesim(name)
@@ -232,10 +234,14 @@ class TurtlesimLaunch:
             return
         self.stopped = True
         self.trouble = self._replaced()
-        stops = [(launch, 15) for launch, _ in self.simulators.values()]
+        stops = [functools.partial(launch.stop, 15) for launch, _ in self.simulators.values()]
         if self.run:
-            stops.append((self.run, self.session.rubric.limits['stop_seconds']))
-        together(*[functools.partial(launch.stop, seconds) for launch, seconds in stops])
+            # Once the nodes it started have left the graph (roscpp and rospy leave it first on
+            # Ctrl-C), what is left of the student's roslaunch is its own exit, 0.3 s: not waited for.
+            started = node_names() - self.known_nodes - set(self.simulators)
+            stops.append(functools.partial(self.run.stop, self.session.rubric.limits['stop_seconds'],
+                                           (lambda: not node_names() & started) if started else None))
+        together(*stops)
         self.publishers.look(0)
         self.publishers.close()
         if self.recorded:
