@@ -75,6 +75,16 @@ class HeldClock:
         self.hold_ns = None
 
 
+def creep_seconds(latencies, least=0.002, most=0.01):
+    """How long a creeping HeldClock's caller waits after a step for a message sent at it (wall
+    seconds): three times the longest of `latencies` (how long the last messages took from a step
+    to their listener), within [least, most]; `most` while none is known. On a quiet machine a
+    message takes 0.5 - 2 ms; a busy one is given the most."""
+    if not latencies:
+        return most
+    return min(most, max(least, 3 * max(latencies)))
+
+
 def cycles_through(digits, id_number):
     """Whether the digits are the ID's, in order, starting anywhere and wrapping round."""
     expected = [int(digit) for digit in id_number]

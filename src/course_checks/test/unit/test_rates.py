@@ -1,7 +1,7 @@
 """course_checks.rates: the rate a publisher keeps, and its rate from first to last arrival."""
 import pytest
 
-from course_checks.rates import HeldClock, kept_rate, rate_of
+from course_checks.rates import HeldClock, creep_seconds, kept_rate, rate_of
 
 
 def test_a_steady_publisher_keeps_its_rate():
@@ -143,3 +143,10 @@ def test_a_faster_publisher_heard_slowly_is_measured_at_its_rate():
         stamps = _graded(HeldClock(20000000, 4000000, settling=10), int(round(1e9 / rate)), [0] * 110,
                          creep_ticks=15, busy_ticks=12)
         assert _measured(stamps) == pytest.approx(rate, abs=0.2)
+
+
+def test_the_clock_creeps_three_times_as_long_as_the_last_messages_took_within_2_to_10_ms():
+    assert creep_seconds([]) == 0.01   # nothing heard yet: the most
+    assert creep_seconds([0.0007, 0.0012, 0.0009]) == pytest.approx(0.0036)
+    assert creep_seconds([0.0001]) == 0.002
+    assert creep_seconds([0.001, 0.015]) == 0.01   # one message the grader heard late: the most

@@ -83,9 +83,7 @@ class HeldClockDriver:
     its stamp on that clock."""
     STEP_NS = 4000000   # 250 per simulated second, as turtlesim's /clock
     PATIENCE = 1.0      # wall seconds a message due may take: a publisher kept that long from the processor
-    CREEP = 0.01        # wall seconds a creeping clock waits after a step for a message sent at it, at most:
-    CREEP_LEAST = 0.002  # three times the longest of the last LATENCIES messages' way from a step to here,
-    LATENCIES = 10      # at least this (on a quiet machine 0.5 - 1 ms: the creep was 10 ms a step)
+    LATENCIES = 10      # messages whose way from a step to here decides how long the clock creeps (rates.creep_seconds)
 
     def __init__(self, topic, message_class, period, real_time_factor, settling):
         self.clock = rates.HeldClock(int(round(period * 1e9)), self.STEP_NS, settling)
@@ -130,14 +128,8 @@ class HeldClockDriver:
             self.clock_pub.publish(Clock(rospy.Time(0, now_ns)))
             self.stepped_at = time.monotonic()
             if creeping:
-                self._heard_within(self.creep())
+                self._heard_within(rates.creep_seconds(self.latencies))
                 self.pacer.hold(now_ns, time.monotonic())
-
-    def creep(self):
-        """How long to wait after a step for a message sent at it: the way of the last messages, with room."""
-        if not self.latencies:
-            return self.CREEP
-        return min(self.CREEP, max(self.CREEP_LEAST, 3 * max(self.latencies)))
 
     def _heard_within(self, seconds):
         """Whether a message came within `seconds`; if so, how long after the last step it was heard
