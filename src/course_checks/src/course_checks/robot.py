@@ -41,6 +41,12 @@ def node_names():
     return {node for _, nodes in publishers + subscribers + services for node in nodes}
 
 
+def left_the_graph(names):
+    """None of the nodes `names` is known to the master any more (roscpp and rospy leave the graph
+    first on Ctrl-C: what is left of them is their exit)."""
+    return not node_names() & names
+
+
 def senders(recorder):
     """The nodes that sent the messages a TopicRecorder kept (by the connection each came by)."""
     return {sender(message) for message in recorder.messages()}

@@ -5,7 +5,7 @@ import os
 import time
 from typing import Callable, NamedTuple
 
-from course_checks.robot import node_names
+from course_checks.robot import left_the_graph, node_names
 from course_checks.verdict import Verdict
 from course_grader import feedback
 
@@ -81,7 +81,7 @@ class StudentNode:
 
     def left_the_graph(self):
         """The ROS nodes it started are gone from the master (rospy leaves it first on Ctrl-C)."""
-        return not node_names() & self.names
+        return left_the_graph(self.names)
 
     def stop(self):
         """Ctrl-C; a node that started a ROS node has stopped once that node left the graph (rospy's

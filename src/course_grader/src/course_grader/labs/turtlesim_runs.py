@@ -18,7 +18,7 @@ from rosgraph_msgs.msg import Clock
 from turtlesim.msg import Pose
 
 from course_checks.recorded import PublisherLook, RecordedTopic, Records
-from course_checks.robot import node_names
+from course_checks.robot import left_the_graph, node_names
 from course_checks.verdict import Verdict
 from course_common.waiting import wait_for
 from course_grader import bags, wall_limit
@@ -240,7 +240,7 @@ class TurtlesimLaunch:
             # Ctrl-C), what is left of the student's roslaunch is its own exit, 0.3 s: not waited for.
             started = node_names() - self.known_nodes - set(self.simulators)
             stops.append(functools.partial(self.run.stop, self.session.rubric.limits['stop_seconds'],
-                                           (lambda: not node_names() & started) if started else None))
+                                           functools.partial(left_the_graph, started) if started else None))
         together(*stops)
         self.publishers.look(0)
         self.publishers.close()
