@@ -56,8 +56,8 @@ class LockStepTest(unittest.TestCase):
         cls.clock = TopicRecorder('/clock', Clock)
         cls.odom = TopicRecorder('/odom', Odometry)
         cls.responder = Responder()
-        wait_until(lambda: cls.odom.latest() and cls.responder.cmd_vel.get_num_connections(), 30,
-                   'fake_tb3 on odom and cmd_vel')
+        wait_until(lambda: cls.odom.latest() and cls.clock.latest() and cls.responder.cmd_vel.get_num_connections(),
+                   30, 'fake_tb3 on odom, clock and cmd_vel')
 
     def tearDown(self):
         self.responder.answering = False

@@ -39,8 +39,8 @@ class SimTimeTest(unittest.TestCase):
         cls.collisions = TopicRecorder('/collisions', UInt32)
         cls.rosout = TopicRecorder('/rosout', Log)
         cls.cmd_vel = rospy.Publisher('/cmd_vel', Twist, queue_size=1)
-        wait_until(lambda: cls.scan.latest() and cls.odom.latest() and cls.collisions.latest(), 30,
-                   'scan, odom and collisions')
+        wait_until(lambda: cls.scan.latest() and cls.odom.latest() and cls.collisions.latest()
+                   and cls.clock.latest(), 30, 'scan, odom, collisions and clock')
         wait_until(lambda: cls.cmd_vel.get_num_connections(), 10, 'fake_tb3 on /cmd_vel')
 
     def drive(self, linear, angular=0.0):

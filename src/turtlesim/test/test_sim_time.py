@@ -29,6 +29,7 @@ class SimTimeTest(unittest.TestCase):
         cls.clock = TopicRecorder('/clock', Clock)
         cls.pose = TopicRecorder('/turtle1/pose', Pose)
         cls.pose.next_message(30.0)
+        cls.clock.next_message(30.0)   # a pose may come before this node's /clock connection is up
 
     def sim_now(self):
         return self.clock.latest().clock.to_sec()

@@ -159,9 +159,10 @@ def run_ticks(factor, scans, answer):
         if lock.holds(next_ns):
             pacer.hold(*lock.await_answer(never))
         due = pacer.due(next_ns)
-        while time.monotonic() < due:
-            time.sleep(due - time.monotonic())
         now = time.monotonic()
+        while now < due:   # the node's way: the clock read once per turn, never a negative sleep
+            time.sleep(due - now)
+            now = time.monotonic()
         pacer.reached(next_ns, now)
         if physics.next_ns == next_ns:
             physics.advance()
