@@ -4,9 +4,10 @@ import os
 import re
 import subprocess
 import sys
-import unicodedata
 
 import pytest
+
+from course_testing.markdown import heading_anchors
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FRONT_PAGE = os.path.join(ROOT, 'README.md')
@@ -21,7 +22,6 @@ CODE_SPAN = re.compile(r'(`+).+?\1', re.S)
 INLINE_LINK = re.compile(r'!?\[(?:[^\[\]]|\[[^\]]*\])*\]\(\s*<?([^)\s>]+)>?(?:\s+"[^"]*")?\s*\)')
 REFERENCE_DEFINITION = re.compile(r'^ {0,3}\[[^\]]+\]:\s*<?(\S+?)>?(?:\s+"[^"]*")?\s*$', re.M)
 HTML_TARGET = re.compile(r'<(?:img|a)\b[^>]*?\b(?:src|href)\s*=\s*"([^"]+)"', re.I)
-HEADING = re.compile(r'^ {0,3}#{1,6}\s+(.*?)\s*#*\s*$', re.M)
 
 
 def markdown_files():
@@ -55,26 +55,9 @@ def is_external(target):
     return re.match(r'^[a-z][a-z0-9+.-]*:', target, re.I) is not None
 
 
-def anchor_of(heading):
-    """The anchor GitHub gives a heading: lower case, punctuation dropped, spaces to dashes."""
-    heading = re.sub(r'!?\[([^\]]*)\]\([^)]*\)', r'\1', heading)   # a link keeps its text
-    heading = heading.replace('`', '').strip().lower()
-    kept = ''.join(c for c in heading
-                   if c in ' -_' or unicodedata.category(c)[0] in 'LN')
-    return kept.replace(' ', '-')
-
-
 def anchors(path):
     with open(path, encoding='utf-8') as page:
-        headings = HEADING.findall(FENCE.sub('', page.read()))
-    seen = {}
-    result = set()
-    for heading in headings:
-        anchor = anchor_of(heading)
-        count = seen.get(anchor, 0)
-        seen[anchor] = count + 1
-        result.add(anchor if count == 0 else '%s-%d' % (anchor, count))
-    return result
+        return set(heading_anchors(page.read()))
 
 
 def broken_links(markdown_path):
@@ -184,11 +167,3 @@ def test_the_checker_finds_broken_links_and_pictures(tmp_path, monkeypatch):
         'docs/also-gone.md: no such file',
         'gone-too.png: no such file',
     ])
-
-
-def test_the_anchors_are_githubs():
-    assert anchor_of('What survives what (measured)') == 'what-survives-what-measured'
-    assert anchor_of('fake_tb3: how it behaves, and where it differs from Gazebo') == \
-        'fake_tb3-how-it-behaves-and-where-it-differs-from-gazebo'
-    assert anchor_of('Obstacle avoidance that keeps going: `wander.py`') == \
-        'obstacle-avoidance-that-keeps-going-wanderpy'

@@ -14,7 +14,7 @@ import re
 from concurrent.futures import ThreadPoolExecutor
 
 from course_common.process_table import command_line, marked_processes, new_mark, stop_marked
-from course_grader.feedback import heading_anchors
+from course_testing.markdown import headings
 from test_student_workspace import COURSE_DEVEL, ROOT, SLIDES
 
 PASTED = os.path.join(SLIDES, 'pasted')
@@ -113,12 +113,11 @@ def section(page_path, anchor):
     heading of its level or above; it must be there."""
     with open(os.path.join(ROOT, page_path)) as text:
         lines = text.read().split('\n')
-    headings = [(number, len(line) - len(line.lstrip('#'))) for number, line in enumerate(lines)
-                if re.match(r'#{1,6} ', line)]
-    anchors = heading_anchors('\n'.join(lines))
+    found = headings('\n'.join(lines))
+    anchors = [name for _, _, name in found]
     assert anchor in anchors, '%s has no section #%s (its anchors: %s)' % (page_path, anchor, anchors)
-    start, level = headings[anchors.index(anchor)]
-    end = next((number for number, depth in headings if number > start and depth <= level), len(lines))
+    start, level, _ = found[anchors.index(anchor)]
+    end = next((number for number, depth, _ in found if number > start and depth <= level), len(lines))
     return '\n'.join(lines[start:end])
 
 

@@ -8,7 +8,6 @@ import io
 import itertools
 import json
 import os
-import re
 import subprocess
 import tarfile
 import threading
@@ -17,6 +16,7 @@ import zipfile
 import pytest
 
 from course_common.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
+from course_testing.verdicts import masked_figures
 from example_class import EXAMPLES, ROOT, expected, labs, make_class, mismatches, outscored_twins, read_results
 from hostile_archive import link_chain_archive, markers_under
 
@@ -73,11 +73,9 @@ FIRST_GRADINGS = {}
 
 def verdicts(details):
     """{student: (score, [(criterion, points, reason, hints)])}, every measured figure in the sentences
-    as '#': a run is real time, so the front beam at the stop reads 0.446 m one time and 0.451 m the
-    next; what must not change is the points and what each sentence says."""
-    def shape(text):
-        return re.sub(r'\d+(\.\d+)?', '#', text)
-    return {student: (result['score'], [(c['id'], c['points'], shape(c['reason']), [shape(h) for h in c['hints']])
+    as '#' (course_testing.verdicts)."""
+    return {student: (result['score'], [(c['id'], c['points'], masked_figures(c['reason']),
+                                         [masked_figures(h) for h in c['hints']])
                                         for c in result['criteria']])
             for student, result in details.items()}
 

@@ -50,24 +50,6 @@ def _see(package, mistake):
     return ' (see %s)' % section if section else ''
 
 
-def heading_anchors(markdown):
-    """The anchors GitHub gives the headings of a Markdown page: lower case, punctuation but `-`
-    and `_` dropped, spaces as `-`, a repeated one numbered (-1, -2, ...)."""
-    anchors, seen = [], {}
-    fenced = False
-    for line in markdown.splitlines():
-        if line.startswith('```'):
-            fenced = not fenced
-        heading = re.match(r'#{1,6} (.*)', line)
-        if fenced or not heading:
-            continue
-        anchor = re.sub(r'[^\w\- ]', '', heading.group(1).strip().lower()).replace(' ', '-')
-        count = seen.get(anchor, 0)
-        seen[anchor] = count + 1
-        anchors.append(anchor if not count else '%s-%d' % (anchor, count))
-    return anchors
-
-
 # `print x` / `print 'x'` (a Python 2 print statement): `print` then something that is not an
 # opening parenthesis, an operator or the end of the line.
 _PY2_PRINT = re.compile(r'^\s*print(\s+[^\s(=.,)\]:]|\s*["\'])')
