@@ -85,9 +85,25 @@ done
 # that measure rates and latencies apart from the others).
 SLOW_WORKSPACE_TESTS=(network student test_tour.py)
 SPLIT_WORKSPACE_TESTS=(network student)
+# Files of tests/ that need root, run where the tests run as root (CI's host side), not as an
+# ordinary user (the Docker image's, a student's): two network namespaces need CAP_NET_ADMIN, a
+# second user's processes need root to start and to be killed. Elsewhere a line says they did not run.
+ROOT_ONLY_WORKSPACE_TESTS=(network/test_two_hosts.py test_user_reaper.py)
+root_only() {
+    local file
+    [ "$(id -u)" = 0 ] && return 1
+    for file in "${ROOT_ONLY_WORKSPACE_TESTS[@]}"; do [ "$1" = "$file" ] && return 0; done
+    return 1
+}
 if [ $# -eq 0 ] && [ -d "$ROOT/tests" ]; then
     args=()
     for part in "${SLOW_WORKSPACE_TESTS[@]}"; do args+=(--ignore="$ROOT/tests/$part"); done
+    for part in "${ROOT_ONLY_WORKSPACE_TESTS[@]}"; do
+        if root_only "$part" && [ -e "$ROOT/tests/$part" ] && [ "$part" = "${part##*/}" ]; then
+            echo "test: tests/$part needs root: not run here"
+            args+=(--ignore="$ROOT/tests/$part")
+        fi
+    done
     add_job "pytest tests" 0,1 "${PYTEST[@]}" --junitxml="$RESULTS/pytest/workspace.xml" "${args[@]}" "$ROOT/tests"
     expected+=(pytest/workspace.xml)
 fi
@@ -107,10 +123,8 @@ if [ $# -eq 0 ]; then
         fi
     done
     for part in "${steps[@]}"; do
-        if [ "$part" = network/test_two_hosts.py ] && [ "$(id -u)" != 0 ]; then
-            # Two network namespaces need CAP_NET_ADMIN: this test runs where the tests run as root
-            # (CI's host side), not as the Docker image's ordinary user.
-            echo "test: tests/network/test_two_hosts.py needs root: not run here"
+        if root_only "$part"; then
+            echo "test: tests/$part needs root: not run here"
             continue
         fi
         name="workspace-$(echo "${part%.py}" | tr / -)"
@@ -133,13 +147,12 @@ for pkg in "${packages[@]}"; do
 done
 
 # A step of ALONE that is not among the steps (renamed, moved) would run beside others unseen: on a
-# whole run, each must name a step (test_two_hosts.py is left out where it needs root).
+# whole run, each must name a step (one that needs root is left out where the tests run without it).
 if [ $# -eq 0 ]; then
     declare -A labels=()
     while IFS=$'\t' read -r label _; do labels["$label"]=1; done < "$jobs_file"
     for step in "${ALONE[@]}"; do
-        if [ -z "${labels[$step]:-}" ] \
-                && { [ "$step" != "pytest tests/network/test_two_hosts.py" ] || [ "$(id -u)" = 0 ]; }; then
+        if [ -z "${labels[$step]:-}" ] && ! root_only "${step#pytest tests/}"; then
             step_failures+=("tools/test-alone-steps.txt names '$step', which is no step of this run")
         fi
     done

@@ -412,3 +412,21 @@ def test_a_step_named_to_run_alone_that_is_no_step_fails_a_whole_run(workspace):
     # A run of some packages has fewer steps: nothing to say then.
     code, output = run_test_command(workspace, 'alpha')
     assert (code, last_line(output)) == (0, '2 passed, 0 failed'), output
+
+
+def test_the_tests_that_need_root_run_only_as_root_and_a_line_says_so_elsewhere(workspace):
+    """tests/test_user_reaper.py (in the quick step) and tests/network/test_two_hosts.py (a step of its
+    own) run as root; for an ordinary user (the Docker image's) each is named as not run, nothing else."""
+    write(str(workspace / 'tests/test_user_reaper.py'), 'def test_reaper():\n    assert False, "ran"\n')
+    write(str(workspace / 'tests/network/test_two_hosts.py'), 'def test_two_hosts():\n    assert False, "ran"\n')
+    write(str(workspace / 'tools/test-alone-steps.txt'), 'pytest tests/network/test_two_hosts.py\n')
+    for uid, closing in (('1000', '5 passed, 0 failed'), ('0', '5 passed, 2 failed')):
+        write(str(workspace / 'tools/fake_bin/id'), '#!/bin/bash\necho %s\n' % uid, 0o755)   # after env.sh
+        code, output = run_test_command(workspace)
+        assert last_line(output) == closing, output
+        said = [line for line in output.splitlines() if 'needs root' in line]
+        if uid == '0':
+            assert code == 1 and said == [] and 'names \'' not in output, output
+        else:
+            assert code == 0 and said == ['test: tests/test_user_reaper.py needs root: not run here',
+                                          'test: tests/network/test_two_hosts.py needs root: not run here'], output

@@ -148,11 +148,13 @@ def stop_user(uid, reaper=None):
     user's `reaper` (a UserReaper) when there is one, then each one the process table still names;
     returns how many the table named. Where there is no process table, says so on standard error
     (the grading's log) and stops none but the reaper's: the grading goes on, but what the
-    student's side left running may live on."""
+    student's side left running may live on. The reaper itself is left alive for the next time:
+    its effective user id is the user's, so the table names it too."""
     if reaper is not None:
         reaper.kill_all()
+    spared = reaper.process.pid if reaper is not None else None
     try:
-        return stop_processes(lambda: user_processes(uid))
+        return stop_processes(lambda: [pid for pid in user_processes(uid) if pid != spared])
     except NoProcessTable as error:
         print('process_table: the processes of user %d cannot be stopped: %s. Whatever they started '
               '(a daemon of the build) goes on running.' % (uid, error), file=sys.stderr, flush=True)
