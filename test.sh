@@ -99,6 +99,7 @@ if [ $# -eq 0 ] && [ -d "$ROOT/tests" ]; then
     args=()
     for part in "${SLOW_WORKSPACE_TESTS[@]}"; do args+=(--ignore="$ROOT/tests/$part"); done
     for part in "${ROOT_ONLY_WORKSPACE_TESTS[@]}"; do
+        # Those at the top of tests/ (the quick step's); the others are steps of their own, below.
         if root_only "$part" && [ -e "$ROOT/tests/$part" ] && [ "$part" = "${part##*/}" ]; then
             echo "test: tests/$part needs root: not run here"
             args+=(--ignore="$ROOT/tests/$part")

@@ -1,6 +1,6 @@
 """course_common.process_table.UserReaper, the grader's last word on a student's processes (docs/grading.md,
 "take the machine or the time"): started before the student has any, it kills every one of them at once,
-a fork bomb and daemons in sessions of their own included; they cannot signal it; and it is still there
+a fork bomb and daemons in sessions of their own included; they can neither signal nor trace it; and it is still there
 for the next run. Needs root, to run as a second user (./test.sh leaves this file out for an ordinary user)."""
 import os
 import subprocess
@@ -76,13 +76,35 @@ def test_a_fork_bomb_and_a_daemon_are_killed_at_once(student):
     assert_bomb_and_daemon_killed_at_once(*student)
 
 
-def test_the_students_processes_cannot_kill_the_reaper(student):
+# What a student's process may try against the reaper: kill it, stop it (it would then answer no
+# more), trace it (and make it do nothing), read its memory. Each prints one word.
+AGAINST_THE_REAPER = '''
+import ctypes, os, signal
+pid = %d
+for name in ('SIGKILL', 'SIGSTOP', 'SIGTERM'):
+    try:
+        os.kill(pid, getattr(signal, name))
+        print(name, 'sent')
+    except PermissionError:
+        print(name, 'refused')
+libc = ctypes.CDLL(None, use_errno=True)
+PTRACE_ATTACH = 16
+print('ptrace', 'refused' if libc.ptrace(PTRACE_ATTACH, pid, None, None) == -1 else 'attached')
+try:
+    open('/proc/%%d/mem' %% pid, 'rb').close()
+    print('memory opened')
+except PermissionError:
+    print('memory refused')
+'''
+
+
+def test_the_students_processes_can_neither_signal_nor_trace_the_reaper(student):
     uid, reaper = student
-    tried = as_user(uid, 'import os, signal\ntry:\n    os.kill(%d, signal.SIGKILL)\nexcept PermissionError:\n'
-                         '    print("refused")\n' % reaper.process.pid)
-    assert tried.stdout == 'refused\n'
+    tried = as_user(uid, AGAINST_THE_REAPER % reaper.process.pid)
+    assert tried.stdout.splitlines() == ['SIGKILL refused', 'SIGSTOP refused', 'SIGTERM refused', 'ptrace refused',
+                                         'memory refused'], tried.stdout
     assert reaper.process.poll() is None
-    assert reaper.kill_all()
+    assert reaper.kill_all(timeout=5)
 
 
 def test_after_stopping_a_run_the_reaper_is_there_for_the_next(student):
