@@ -77,7 +77,8 @@ def test_a_fork_bomb_and_a_daemon_are_killed_at_once(student):
 
 
 # What a student's process may try against the reaper: kill it, stop it (it would then answer no
-# more), trace it (and make it do nothing), read its memory. Each prints one word.
+# more), trace it (and make it do nothing), read its memory, make it the kernel's first choice when
+# memory runs out (then a submission that fills it would have it killed). Each prints one word.
 AGAINST_THE_REAPER = '''
 import ctypes, os, signal
 pid = %d
@@ -95,6 +96,12 @@ try:
     print('memory opened')
 except PermissionError:
     print('memory refused')
+try:
+    with open('/proc/%%d/oom_score_adj' %% pid, 'w') as score:
+        score.write('1000')
+    print('score set')
+except PermissionError:
+    print('score refused')
 '''
 
 
@@ -102,7 +109,7 @@ def test_the_students_processes_can_neither_signal_nor_trace_the_reaper(student)
     uid, reaper = student
     tried = as_user(uid, AGAINST_THE_REAPER % reaper.process.pid)
     assert tried.stdout.splitlines() == ['SIGKILL refused', 'SIGSTOP refused', 'SIGTERM refused', 'ptrace refused',
-                                         'memory refused'], tried.stdout
+                                         'memory refused', 'score refused'], tried.stdout
     assert reaper.process.poll() is None
     assert reaper.kill_all(timeout=5)
 

@@ -4,6 +4,7 @@ each one a paste of the slides makes with the section of docs/copying-the-slides
 import os
 import re
 import shutil
+import signal
 import stat
 
 # The section of docs/copying-the-slides/ that explains each mistake a paste of a lab's slides makes
@@ -326,10 +327,12 @@ def _crash(script, output, lines, package):
     return '%s crashed; its last traceback lines:\n%s' % (script, tail)
 
 
-def explain_run(script, output, started, stopped_cleanly, python2_sentences=(), path=None, package=None):
+def explain_run(script, output, started, stopped_cleanly, python2_sentences=(), path=None, package=None,
+                exit_before_stop=None):
     """Sentences about one run of a student's node: why it did not start, how it crashed, whether
     it stopped on Ctrl-C. python2_sentences: those of python2_prints for this script; path: the
-    script (its lines explain a paste's errors); package: whose copying page the sentences name."""
+    script (its lines explain a paste's errors); package: whose copying page the sentences name;
+    exit_before_stop: its exit status (Popen's) when it ended before the grader stopped it."""
     sentences = []
     lines = _read_lines(path) if path else []
     error = syntax_error(output)
@@ -357,6 +360,12 @@ def explain_run(script, output, started, stopped_cleanly, python2_sentences=(), 
             sentences.append(crash)
         elif not started:
             sentences.append('%s never started a ROS node (no init_node within the time limit)' % script)
+    if exit_before_stop == -signal.SIGKILL:
+        # Nothing of the grader's kills a node during its run: the kernel does when memory runs out,
+        # and takes the student's processes first (grading_session.OOM_KILLED_FIRST).
+        sentences.append('%s was killed (SIGKILL) during the run, not by the grader: the kernel does this when '
+                         'memory runs out. Does it keep everything it receives, or start processes without '
+                         'end?' % script)
     if stopped_cleanly is False:
         sentences.append('%s did not stop on Ctrl-C (SIGINT) and had to be killed: let '
                          'rospy.spin() or `while not rospy.is_shutdown()` end the program' % script)

@@ -31,25 +31,38 @@ from course_common.waiting import poll_until
 from course_grader.results import Verdict
 
 
+# Before each program of the student's side: the kernel's out-of-memory killer takes it first
+# (oom_score_adj 1000, the most; raising it needs no privilege). A submission that fills its
+# sandbox's memory then loses its own processes, not the session, the master or the simulators,
+# and each run keeps its own verdict. It may lower the score back (no capability pins it): then
+# the session may be killed instead, which costs that submission's whole grade and no one else's.
+# Where there is no /proc (Gradescope's chroot) choom cannot work: the kernel then goes by size alone.
+OOM_KILLED_FIRST = ['/usr/bin/choom', '-n', '1000', '--']
+OOM_SCORE = '/proc/self/oom_score_adj'
+
+
 class StudentSide:
     """How the student's build and nodes are started: as `user` (None: as we are), with the
-    course's environment plus, once built, the student's overlay."""
+    course's environment plus, once built, the student's overlay, each the first that the kernel
+    kills when memory runs out (OOM_KILLED_FIRST)."""
 
     def __init__(self, user, scratch):
         self.user = user
         self.scratch = scratch
         self.home = os.path.join(scratch, 'home')
         self.env = dict(os.environ, HOME=self.home, ROS_HOME=os.path.join(scratch, 'ros_home'))
+        self.prefix = OOM_KILLED_FIRST if os.path.exists(OOM_SCORE) and os.path.exists(OOM_KILLED_FIRST[0]) else []
         # Started now, while the user has no process: a fork bomb may leave no room for a program later.
         self.reaper = UserReaper(pwd.getpwnam(user).pw_uid) if user else None
 
     def start(self, argv, log_path, cwd=None):
-        return Launch(argv, log_path, env=self.env, user=self.user, cwd=cwd)
+        return Launch(self.prefix + list(argv), log_path, env=self.env, user=self.user, cwd=cwd)
 
     def run(self, argv, timeout, env=None, cwd=None):
         """What a short command printed (standard output); with `env` instead of the side's own."""
         as_user = {'user': self.user, 'group': self.user, 'extra_groups': []} if self.user else {}
-        return subprocess.run(argv, env=self.env if env is None else env, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+        return subprocess.run(self.prefix + list(argv), env=self.env if env is None else env, cwd=cwd,
+                              stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                               stderr=subprocess.DEVNULL, timeout=timeout, check=True, **as_user).stdout
 
     def stop_all(self):

@@ -155,6 +155,13 @@ def test_explain_run_crash_never_started_never_stopped_and_python2():
     assert feedback.explain_run('t.py', '', True, False) == [
         't.py did not stop on Ctrl-C (SIGINT) and had to be killed: let rospy.spin() or '
         '`while not rospy.is_shutdown()` end the program']
+    # Killed during the run (the kernel's out-of-memory killer takes the student's processes first);
+    # any other end before the grader's Ctrl-C (a crash, exit 1) says nothing of the kind.
+    assert feedback.explain_run('a.py', '', True, True, exit_before_stop=-9) == [
+        'a.py was killed (SIGKILL) during the run, not by the grader: the kernel does this when memory runs '
+        'out. Does it keep everything it receives, or start processes without end?']
+    assert feedback.explain_run('a.py', '', True, True, exit_before_stop=1) == []
+    assert feedback.explain_run('a.py', '', True, True, exit_before_stop=None) == []
     syntax = ('  File "/tmp/ws/src/p/scripts/l.py", line 5\n    print msg.ranges[0]\n    ^^^^^\n'
               "SyntaxError: Missing parentheses in call to 'print'. Did you mean print(...)?\n")
     sentences = feedback.explain_run('l.py', syntax, False, None, ['l.py line 5: A', 'l.py line 7: B'])

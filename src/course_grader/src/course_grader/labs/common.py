@@ -48,6 +48,7 @@ class StudentNode:
             self.launch = session.student(['/usr/bin/python3', self.path] + list(ros_args),
                                           os.path.splitext(script_name)[0] + '.log')
         self.stopped_cleanly = None
+        self.exit_before_stop = None   # its exit status when it ended before the grader stopped it
         self.names = set()   # of the ROS nodes it started
         self.output_before_stop = ''
         self.start_deadline = time.monotonic() + session.rubric.limits['start_seconds']
@@ -88,6 +89,7 @@ class StudentNode:
         exit after that, 0.6 s, is not waited for); one that started none, once it ended."""
         if self.launch:
             self.started()
+            self.exit_before_stop = self.launch.process.poll()
             self.output_before_stop = self.output   # what came after Ctrl-C is not the student's doing
             self.stopped_cleanly = self.launch.stop(self.session.rubric.limits['stop_seconds'],
                                                     self.left_the_graph if self.names else None)
@@ -100,7 +102,8 @@ class StudentNode:
         # Paths of the scratch workspace, as the student knows them: move_turtlebot3/scripts/...
         output = self.output_before_stop.replace(os.path.dirname(self.session.package_dir) + os.sep, '')
         return feedback.explain_run(self.session.relative(self.path), output, self.was_started,
-                                    self.stopped_cleanly, prints, self.path, self.session.rubric.package)
+                                    self.stopped_cleanly, prints, self.path, self.session.rubric.package,
+                                    self.exit_before_stop)
 
 
 def run_each(session, runs, **given):
