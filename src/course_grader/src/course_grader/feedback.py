@@ -334,6 +334,7 @@ def explain_run(script, output, started, stopped_cleanly, python2_sentences=(), 
     script (its lines explain a paste's errors); package: whose copying page the sentences name;
     exit_before_stop: its exit status (Popen's) when it ended before the grader stopped it."""
     sentences = []
+    killed = exit_before_stop == -signal.SIGKILL
     lines = _read_lines(path) if path else []
     error = syntax_error(output)
     shell = _RUN_BY_THE_SHELL.search(output)
@@ -358,14 +359,14 @@ def explain_run(script, output, started, stopped_cleanly, python2_sentences=(), 
         crash = _crash(script, output, lines, package)
         if crash:
             sentences.append(crash)
+        elif killed:
+            # Nothing of the grader's kills a node during its run: the kernel does when memory runs
+            # out, and takes the student's processes first (grading_session.OOM_KILLED_FIRST).
+            sentences.append('%s was killed (SIGKILL) %s, not by the grader: the kernel does this when memory '
+                             'runs out. Does it keep everything it receives, or start processes without end?'
+                             % (script, 'during the run' if started else 'before it started a ROS node'))
         elif not started:
             sentences.append('%s never started a ROS node (no init_node within the time limit)' % script)
-    if exit_before_stop == -signal.SIGKILL:
-        # Nothing of the grader's kills a node during its run: the kernel does when memory runs out,
-        # and takes the student's processes first (grading_session.OOM_KILLED_FIRST).
-        sentences.append('%s was killed (SIGKILL) during the run, not by the grader: the kernel does this when '
-                         'memory runs out. Does it keep everything it receives, or start processes without '
-                         'end?' % script)
     if stopped_cleanly is False:
         sentences.append('%s did not stop on Ctrl-C (SIGINT) and had to be killed: let '
                          'rospy.spin() or `while not rospy.is_shutdown()` end the program' % script)

@@ -160,7 +160,12 @@ def test_explain_run_crash_never_started_never_stopped_and_python2():
     assert feedback.explain_run('a.py', '', True, True, exit_before_stop=-9) == [
         'a.py was killed (SIGKILL) during the run, not by the grader: the kernel does this when memory runs '
         'out. Does it keep everything it receives, or start processes without end?']
+    assert feedback.explain_run('a.py', '', False, None, exit_before_stop=-9) == [
+        'a.py was killed (SIGKILL) before it started a ROS node, not by the grader: the kernel does this when '
+        'memory runs out. Does it keep everything it receives, or start processes without end?']
     assert feedback.explain_run('a.py', '', True, True, exit_before_stop=1) == []
+    assert feedback.explain_run('a.py', '', False, None, exit_before_stop=1) == [
+        'a.py never started a ROS node (no init_node within the time limit)']
     assert feedback.explain_run('a.py', '', True, True, exit_before_stop=None) == []
     syntax = ('  File "/tmp/ws/src/p/scripts/l.py", line 5\n    print msg.ranges[0]\n    ^^^^^\n'
               "SyntaxError: Missing parentheses in call to 'print'. Did you mean print(...)?\n")
