@@ -2,8 +2,8 @@
 # Runs every test of the workspace: ./test.sh        (or only some packages: ./test.sh turtlesim my_turtle)
 # Installs what is missing, builds, then runs the steps: the pure tests (a pytest per folder), the
 # workspace's pytests and the rostests, two (up to five, while the cores are idle) at a time, the ones
-# that measure rates first, one at a time with others held to one core beside them, and ends with one
-# line `N passed, N failed` (docs/testing.md).
+# that measure rates first, one at a time, with the others beside them at a lower CPU priority, and
+# ends with one line `N passed, N failed` (docs/testing.md).
 # Exit status 0 only if every step found its tests, ran them, and they all passed.
 # Environment: TEST_JOBS  how many slow steps run side by side (default auto: 2, and more while the
 #                         cores are idle enough for the next; 1 = one after the other)

@@ -6,14 +6,13 @@ JOBS has one job per line: `label<TAB>exit codes that mean "ran, results written
 <TAB>shell command`, e.g. `rostest fake_tb3/test/rviz.test<TAB>0,1,2<TAB>shared<TAB>rostest ...`.
 Each rostest starts its own master on a free port, so independent .test files may run side by side.
 `alone` jobs run first, one at a time: tests that measure wall-clock rates and latencies (a 30 Hz
-topic's longest gap), which a second test free to use both cores of a 2-core machine would disturb.
-Beside them run some of the others, held to one core (the last one) until the last alone job
-has ended: an alone job then has at least one core to itself, which is what every test must hold
-with (another process keeping a core busy), and its minutes of waiting for real time are not lost
-to the others (with --jobs 1, or on a single core, nothing runs beside them).
-While an alone job runs, more jobs may join the one held to that core while the shares of a core
-they used in their last run (CPU seconds over wall seconds, from FILE) sum to at most BESIDE_SHARE:
-jobs that mostly wait for robots moving in real time fill that core, and the alone job keeps the other.
+topic's longest gap), which the others, free to use both cores of a 2-core machine, would disturb.
+The others run beside them at a lower CPU priority (nice SHARED_NICE, which their processes
+inherit): whenever a process of the alone job wants a core it gets one at once, as if the others
+were not there, and the others use what it leaves (most of a core and more: an alone job mostly
+waits for real time). Against the rest of the machine the others are not starved: Linux shares
+the cores between sessions (autogroup) or cgroups first, and a nice value weighs only within them.
+With --jobs 1, or on a single core, nothing runs beside an alone job.
 The others run N at a time; `--jobs auto` runs two, and more (up to SideBySide.AUTO_MOST) while the
 cores have room for the next: over the last few seconds the cores were idle for at least that job's
 share in its last run (a whole core when unknown) and HEADROOM more, and the running jobs' shares
@@ -45,11 +44,10 @@ from course_common.process_table import command_line, marked_processes, new_mark
 from course_common.processes import restore_ctrl_c
 from course_common.waiting import poll_until
 
-# How much of the held core the jobs beside an alone job may use together, from their last run.
-BESIDE_SHARE = 0.9
-# A job that used at most this share of a core in its last run mostly waits (for robots moving in
-# real time): the first held beside an alone job is one of those, if any.
-MOSTLY_WAITS = 0.6
+# The nice value of the shared jobs: an alone job's process (nice 0) that wakes takes the core from
+# them at once, and gets 9 times their share of a core both want (nice 19 would give 68 times, but
+# would starve them beside any busy process of the same session, as idle priority did).
+SHARED_NICE = 10
 # The least share of a core a shared job is taken to use beyond the first two (SideBySide.spare).
 LIGHTEST_SHARE = 0.25
 # The share of a core left idle when a job beyond the first two starts: their shares are averages.
@@ -63,8 +61,8 @@ WHY = re.compile(r'RESULT: FAIL|\[FAILURE\]|\[ERROR\] \[Testcase|^FAILED |^ERROR
 # it runs alone (it measures wall-clock rates), its shell command.
 Job = collections.namedtuple('Job', 'label codes alone command')
 # A step that runs: its Popen, the Job's fields, its log file, its time.monotonic() start, the mark
-# in its environment, the core it is held to (None: any).
-Running = collections.namedtuple('Running', 'process label codes alone log start mark core')
+# in its environment.
+Running = collections.namedtuple('Running', 'process label codes alone log start mark')
 
 
 def read_jobs(stream):
@@ -135,9 +133,13 @@ class SideBySide:
         """A job started: what it costs at its start must not count as idle time."""
         self.since = (self.clock(), self.sample())
 
+    def beside(self, running):
+        """Whether an alone job may start beside `running` shared jobs (of a lower priority)."""
+        return running == 0 or (self.cores > 1 and (self.auto or running < self.jobs))
+
     def spare(self, shares):
-        """The share of a core the next job may use (float('inf'): any); `shares`: the running
-        shared jobs' shares of a core in their last run (None: unknown, taken as a whole core)."""
+        """The share of a core the next shared job may use (float('inf'): any); `shares`: the running
+        jobs' shares of a core in their last run (None: unknown, taken as a whole core)."""
         if len(shares) < self.jobs:
             return float('inf')
         if not self.auto or len(shares) >= self.AUTO_MOST or self.clock() - self.since[0] < self.window:
@@ -153,58 +155,34 @@ def needs(share):
     return 1.0 if share is None else max(share, LIGHTEST_SHARE)
 
 
-def next_job(waiting, running, side_by_side, beside_core, share=lambda label: None):
-    """(index in `waiting` (Jobs) of the job to start now, the core it is held to or None), or (None,
-    None) when none may start yet. `running`: the Running jobs. Alone jobs come first in `waiting`; each starts when no
-    other alone job runs and nothing runs but jobs held to beside_core; beside an alone job (running
-    or next), one other job may run, held to beside_core (the first that used at most MOSTLY_WAITS of
-    a core in its last run, if any did), and more of them while the shares of one core they used in
-    their last run (`share(label)`, None if unknown) sum to at most BESIDE_SHARE."""
+def next_job(waiting, running, side_by_side, share=lambda label: None):
+    """The index in `waiting` (Jobs, the alone ones first) of the job to start now, or None when
+    none may start yet. `running`: the Running jobs; `share(label)`: a job's share of a core in its
+    last run (None if unknown). An alone job starts when no other alone job runs (the others run at
+    a lower priority; with --jobs 1 or on one core, when nothing runs), a shared one when the cores
+    have room for it beside all that runs, the alone job included (SideBySide), in order: a computing job that waits for room is not passed
+    by lighter ones, which would keep the room from coming and leave it for the end, alone."""
     running = list(running)
-    alone_phase = waiting[0].alone or any(entry.alone for entry in running)
-    if not alone_phase:
-        # In order: a computing job that waits for room is not passed by lighter ones, which would
-        # keep the room from coming and leave it for the end, alone.
-        spare = side_by_side.spare([share(entry.label) for entry in running])
-        return (0, None) if needs(share(waiting[0].label)) <= spare else (None, None)
-    if waiting[0].alone and not any(entry.alone for entry in running):
-        if all(entry.core is not None for entry in running):
-            return 0, None  # nothing beside it but jobs held to the other core
-        return None, None  # the others (not held to a core) end first
-    shared = [index for index, job in enumerate(waiting) if not job.alone]
-    held = [entry for entry in running if not entry.alone]
-    if beside_core is None or not shared or any(entry.core is None for entry in held):
-        return None, None
-    if not held:
-        # The longest that mostly waits, if one is known to: one that computes gets two cores later.
-        waits = [index for index in shared if (share(waiting[index].label) or 1.0) <= MOSTLY_WAITS]
-        return (waits or shared)[0], beside_core
-    used = [share(entry.label) for entry in held]
-    if None in used:
-        return None, None
-    for index in shared:
-        more = share(waiting[index].label)
-        if more is not None and sum(used) + more <= BESIDE_SHARE:
-            return index, beside_core
-    return None, None
+    shares = [share(entry.label) for entry in running]
+    alone_runs = any(entry.alone for entry in running)
+    first_alone = next((index for index, job in enumerate(waiting) if job.alone), None)
+    if first_alone is not None and not alone_runs:
+        # Nothing passes an alone job that waits for the others to end.
+        return first_alone if side_by_side.beside(len(running)) else None
+    if alone_runs and not side_by_side.beside(len(running)):
+        return None
+    first_shared = next((index for index, job in enumerate(waiting) if not job.alone), None)
+    if first_shared is not None and needs(share(waiting[first_shared].label)) <= side_by_side.spare(shares):
+        return first_shared
+    return None
 
 
-def start_job(core):
-    """In the job's process before it runs its command: Ctrl-C as in a terminal, and held to `core`."""
+def start_job(alone):
+    """In the job's process before it runs its command: Ctrl-C as in a terminal, and a shared job's
+    lower priority."""
     restore_ctrl_c()
-    if core is not None:
-        os.sched_setaffinity(0, {core})
-
-
-def release(mark, cores):
-    """Lets every thread of every process of a job (found by its mark) run on `cores` again."""
-    for _ in range(2):  # a child forked during the first pass by a process not yet released
-        for pid in marked_processes(mark):
-            try:
-                for thread in os.listdir('/proc/%d/task' % pid):
-                    os.sched_setaffinity(int(thread), cores)
-            except OSError:
-                pass  # gone meanwhile
+    if not alone:
+        os.setpriority(os.PRIO_PROCESS, 0, max(SHARED_NICE, os.getpriority(os.PRIO_PROCESS, 0)))
 
 
 def left_running(mark, grace=5.0):
@@ -236,9 +214,7 @@ def main():
     # are not one long job alone (unknown ones first of all).
     jobs.sort(key=lambda job: (not job.alone, -known.get(job.label, (float('inf'),))[0]))
     os.makedirs(options.logs, exist_ok=True)
-    side_by_side = SideBySide(options.jobs, os.cpu_count() or 1)
-    usable = sorted(os.sched_getaffinity(0))
-    beside_core = usable[-1] if len(usable) > 1 and options.jobs != 1 else None
+    side_by_side = SideBySide(options.jobs, len(os.sched_getaffinity(0)))
     widest = 0
     waiting, running, failed_steps, times = list(jobs), {}, [], dict(known)
     # When each step ran, in seconds from here (how the steps were packed: docs/testing.md).
@@ -247,8 +223,8 @@ def main():
     timeline.write('# start\tend\tCPU seconds\tstep (from the first start)\n')
     while waiting or running:
         while waiting:
-            index, core = next_job(waiting, running.values(), side_by_side, beside_core,
-                                   share=lambda label: cpu_share(known, label))
+            index = next_job(waiting, running.values(), side_by_side,
+                             share=lambda label: cpu_share(known, label))
             if index is None:
                 break
             job = waiting.pop(index)
@@ -259,9 +235,9 @@ def main():
             # would ignore the SIGINT that stops them (tests/network/ took 181 s instead of 90).
             process = subprocess.Popen(['bash', '-c', job.command], stdout=log, stderr=subprocess.STDOUT,
                                        stdin=subprocess.DEVNULL, env=with_mark(mark),
-                                       preexec_fn=lambda core=core: start_job(core))
+                                       preexec_fn=lambda alone=job.alone: start_job(alone))
             running[process.pid] = Running(process, job.label, job.codes, job.alone, log, time.monotonic(),
-                                           mark, core)
+                                           mark)
             side_by_side.started()
             widest = max(widest, len(running))
         # With jobs waiting for an idle core, look again every half second.
@@ -274,12 +250,6 @@ def main():
         ended = running.pop(pid)
         process, label, codes, log, start, mark = (ended.process, ended.label, ended.codes, ended.log,
                                                    ended.start, ended.mark)
-        if not (waiting and waiting[0].alone) and not any(entry.alone for entry in running.values()):
-            # The alone jobs are over: the job held to one core beside them gets every core again.
-            for key, entry in running.items():
-                if entry.core is not None:
-                    release(entry.mark, usable)
-                    running[key] = entry._replace(core=None)
         log.close()
         code = os.waitstatus_to_exitcode(status) if hasattr(os, 'waitstatus_to_exitcode') else status >> 8
         process.returncode = code
