@@ -271,24 +271,27 @@ def test_auto_runs_two_then_more_while_the_idle_time_and_their_last_shares_leave
     machine = FakeMachine()
     side_by_side = jobs.SideBySide('auto', 2, window=3.0, sample=machine.sample, clock=lambda: machine.now)
     assert side_by_side.spare([]) == side_by_side.spare([0.9]) == float('inf')
-    side_by_side.started()
     machine.idle = 1.6
     machine.pass_seconds(1.0)
-    assert side_by_side.spare([0.3, 0.3]) == 0.0  # idle, but not for the whole window yet
+    assert side_by_side.spare([0.3, 0.3]) == 0.0  # idle, but not for a whole window yet
     machine.pass_seconds(2.5)
     # 1.6 cores idle less the headroom; the two running are planned at 0.3 each: 1.35 left.
     assert side_by_side.spare([0.3, 0.3]) == pytest.approx(1.35)
-    side_by_side.started()
-    machine.pass_seconds(3.5)
+    side_by_side.started(0.3)
+    machine.pass_seconds(0.5)
+    # Half a second later the one just started is not in the idle time yet: its share counts as used.
+    assert side_by_side.spare([0.3, 0.3, 0.3]) == pytest.approx(1.6 - 0.3 - 0.25)
+    side_by_side.started(None)
+    assert side_by_side.spare([0.3, 0.3, 0.3, None]) == pytest.approx(1.6 - 1.3 - 0.25)  # unknown: a core
+    machine.pass_seconds(3.0)
+    # A window later both are in the idle time (still 1.6 here); what is planned for them is left.
+    assert side_by_side.spare([0.3, 0.3, 0.3]) == pytest.approx(2 - 0.9)
     # Two that computed in their last run (0.9 each): what they leave is what may start.
     assert side_by_side.spare([0.9, 0.9]) == pytest.approx(0.2)
-    machine.pass_seconds(3.5)
     assert side_by_side.spare([None, 0.3]) == pytest.approx(0.7)  # unknown: a whole core
-    machine.pass_seconds(3.5)
     assert side_by_side.spare([0.2] * jobs.SideBySide.AUTO_MOST) == 0.0  # never more than AUTO_MOST
     # A busy core beside the tests (another user's loop): nothing beyond the two starts.
     machine.idle = 0.3
-    side_by_side.started()
     machine.pass_seconds(10.0)
     assert side_by_side.spare([0.3, 0.3]) < jobs.needs(0.0)
     assert side_by_side.spare([0.3]) == float('inf')
@@ -368,8 +371,8 @@ def test_beside_an_alone_job_the_others_start_as_its_share_and_the_idle_time_lea
     assert jobs.next_job(waiting, [alone, tour], side_by_side, share) == 1
     machine.idle = 0.8
     machine.pass_seconds(3.5)
-    assert jobs.next_job(waiting, [alone, tour], side_by_side, share) is None  # 0.55: the builds wait
-    assert jobs.next_job(waiting[:1] + waiting[2:], [alone, tour], side_by_side, share) is None  # 0.55 - headroom
+    assert jobs.next_job(waiting, [alone, tour], side_by_side, share) is None  # 0.55: the builds wait,
+    assert jobs.next_job(waiting[:1] + waiting[2:], [alone, tour], side_by_side, share) == 1  # not the teleop
     for one_at_a_time in (jobs.SideBySide(1, 2), jobs.SideBySide('auto', 1)):
         assert jobs.next_job(waiting, [alone], one_at_a_time, share) is None
         assert jobs.next_job(waiting, [tour], one_at_a_time, share) is None  # it waits for the tour

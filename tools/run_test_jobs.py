@@ -118,20 +118,31 @@ def idle_cores(before, after, cores):
 
 class SideBySide:
     """How much of the cores one more shared job may use now: any while fewer than `jobs` run; with
-    jobs='auto', once two run, what both the cores' idle time over the last `window` seconds
-    (measured afresh after each start) and the running jobs' shares (from their last run) leave,
-    up to AUTO_MOST jobs."""
+    jobs='auto', once two run, what both the cores' idle time over the last `window` seconds (less
+    what the jobs started within them are taken to use: their start is not in it yet) and the
+    running jobs' shares (from their last run) leave, up to AUTO_MOST jobs."""
     AUTO, AUTO_MOST = 2, 5
 
     def __init__(self, jobs, cores, window=3.0, sample=cpu_sample, clock=time.monotonic):
         self.auto = jobs == 'auto'
         self.jobs = self.AUTO if self.auto else max(1, jobs)
         self.cores, self.window, self.sample, self.clock = cores, window, sample, clock
-        self.started()
+        self.samples = collections.deque([(clock(), sample())])   # (time, cpu_sample())
+        self.starts = collections.deque()                          # (time, what it is taken to use)
 
-    def started(self):
-        """A job started: what it costs at its start must not count as idle time."""
-        self.since = (self.clock(), self.sample())
+    def started(self, share=None):
+        """A job started, which used `share` of a core in its last run (None: unknown)."""
+        self.starts.append((self.clock(), needs(share)))
+
+    def idle(self):
+        """How many cores were idle over the last `window` seconds, or None before that long."""
+        now = self.clock()
+        self.samples.append((now, self.sample()))
+        while len(self.samples) > 2 and now - self.samples[1][0] >= self.window:
+            self.samples.popleft()
+        if now - self.samples[0][0] < self.window:
+            return None
+        return idle_cores(self.samples[0][1], self.samples[-1][1], self.cores)
 
     def beside(self, running):
         """Whether an alone job may start beside `running` shared jobs (of a lower priority)."""
@@ -142,11 +153,16 @@ class SideBySide:
         jobs' shares of a core in their last run (None: unknown, taken as a whole core)."""
         if len(shares) < self.jobs:
             return float('inf')
-        if not self.auto or len(shares) >= self.AUTO_MOST or self.clock() - self.since[0] < self.window:
+        if not self.auto or len(shares) >= self.AUTO_MOST:
             return 0.0
-        before, self.since = self.since, (self.clock(), self.sample())
+        idle = self.idle()
+        if idle is None:
+            return 0.0
+        while self.starts and self.clock() - self.starts[0][0] >= self.window:
+            self.starts.popleft()
+        starting = sum(uses for _, uses in self.starts)
         planned = self.cores - sum(needs(share) for share in shares)
-        return min(idle_cores(before[1], self.since[1], self.cores) - HEADROOM, planned)
+        return min(idle - starting - HEADROOM, planned)
 
 
 def needs(share):
@@ -238,7 +254,7 @@ def main():
                                        preexec_fn=lambda alone=job.alone: start_job(alone))
             running[process.pid] = Running(process, job.label, job.codes, job.alone, log, time.monotonic(),
                                            mark)
-            side_by_side.started()
+            side_by_side.started(cpu_share(known, job.label))
             widest = max(widest, len(running))
         # With jobs waiting for an idle core, look again every half second.
         pid, status, usage = os.wait4(-1, os.WNOHANG if side_by_side.auto and waiting else 0)
