@@ -8,11 +8,12 @@ Each rostest starts its own master on a free port, so independent .test files ma
 `alone` jobs run first, one at a time: tests that measure wall-clock rates and latencies (a 30 Hz
 topic's longest gap), which the others, free to use both cores of a 2-core machine, would disturb.
 The others run beside them at a lower CPU priority (nice SHARED_NICE, which their processes
-inherit): whenever a process of the alone job wants a core it gets one at once, as if the others
-were not there, and the others use what it leaves (most of a core and more: an alone job mostly
-waits for real time). Against the rest of the machine the others are not starved: Linux shares
-the cores between sessions (autogroup) or cgroups first, and a nice value weighs only within them.
-With --jobs 1, or on a single core, nothing runs beside an alone job.
+inherit) and use what it leaves (most of a core and more: an alone job mostly waits for real
+time). Where nice values weigh, a process of the alone job that wakes takes a core from them at
+once: within a cgroup (a container); on a host that shares the cores between sessions first
+(autogroup), only among one session's processes, and roslaunch starts each node in a session of
+its own, so there their nodes share the cores as equals (the rate tests hold with that too:
+docs/benchmarks.md). With --jobs 1, or on a single core, nothing runs beside an alone job.
 The others run N at a time; `--jobs auto` runs two, and more (up to SideBySide.AUTO_MOST) while the
 cores have room for the next: over the last few seconds the cores were idle for at least that job's
 share in its last run (a whole core when unknown) and HEADROOM more, and the running jobs' shares
@@ -176,8 +177,9 @@ def next_job(waiting, running, side_by_side, share=lambda label: None):
     none may start yet. `running`: the Running jobs; `share(label)`: a job's share of a core in its
     last run (None if unknown). An alone job starts when no other alone job runs (the others run at
     a lower priority; with --jobs 1 or on one core, when nothing runs), a shared one when the cores
-    have room for it beside all that runs, the alone job included (SideBySide), in order: a computing job that waits for room is not passed
-    by lighter ones, which would keep the room from coming and leave it for the end, alone."""
+    have room for it beside all that runs, the alone job included (SideBySide), in order: a
+    computing job that waits for room is not passed by lighter ones, which would keep the room from
+    coming and leave it for the end, alone."""
     running = list(running)
     shares = [share(entry.label) for entry in running]
     alone_runs = any(entry.alone for entry in running)
