@@ -33,6 +33,10 @@ class Launched:
                                         stdin=subprocess.DEVNULL, env=with_mark(self.mark, env),
                                         start_new_session=True)
 
+    def exited(self):
+        """Whether roslaunch has ended (a REQUIRED node that died ends it)."""
+        return self.process.poll() is not None
+
     def output(self):
         with open(self.log_path, errors='replace') as log:
             return log.read()
