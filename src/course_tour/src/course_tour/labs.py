@@ -214,15 +214,16 @@ def turtlebot3_avoid(session):
     return LabReport(lines, [picture])
 
 
-# roslaunch's line when a node it started ends (a REQUIRED one ends the launch).
-NODE_DIED = re.compile(r'process has died \[pid \d+, exit code (-?\d+)')
+# roslaunch's line when a node it started ends (a REQUIRED one ends the launch): its exit code, then
+# its command line, which names the node (__name:=rviz).
+NODE_DIED = re.compile(r'process has died \[pid \d+, exit code (-?\d+), cmd ([^\n]*)')
 
 
-def killed_by(launch_output):
-    """The signal's name (SIGSEGV) when roslaunch says a node of this launch was killed by one,
-    else None (still running, or an exit of its own)."""
-    for code in NODE_DIED.findall(launch_output):
-        if int(code) < 0:
+def killed_by(launch_output, node):
+    """The signal's name (SIGSEGV) when roslaunch says that `node` of this launch was killed by one,
+    else None (still running, an exit of its own, or another node that died)."""
+    for code, command in NODE_DIED.findall(launch_output):
+        if int(code) < 0 and re.search(r'(^|\s)__name:=%s(\s|\]|$)' % re.escape(node), command):
             try:
                 return signal.Signals(-int(code)).name
             except ValueError:
@@ -250,7 +251,7 @@ def turtlebot3_rviz(session):
                        'rviz to draw the laser points', poll=0.5)
             if not rviz.exited():
                 break
-            signal_name = killed_by(rviz.output())
+            signal_name = killed_by(rviz.output(), 'rviz')
             session.stop(rviz)
             if signal_name is None or start == 'second':
                 raise AssertionError('rviz ended before it drew (%s start, %s); its launch said:\n%s' % (

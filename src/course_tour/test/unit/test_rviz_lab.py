@@ -9,13 +9,20 @@ DIED = ('[rviz-2] process has died [pid 11715, exit code %d, cmd /ws/devel/lib/f
 
 
 def test_the_signal_that_killed_a_node_is_named():
-    assert labs.killed_by('started\n' + DIED % -11) == 'SIGSEGV'
-    assert labs.killed_by(DIED % -6) == 'SIGABRT'
+    assert labs.killed_by('started\n' + DIED % -11, 'rviz') == 'SIGSEGV'
+    assert labs.killed_by(DIED % -6, 'rviz') == 'SIGABRT'
 
 
 def test_a_node_that_exited_by_itself_or_still_runs_was_killed_by_nothing():
-    assert labs.killed_by(DIED % 1) is None
-    assert labs.killed_by('process[rviz-2]: started with pid [11715]\n') is None
+    assert labs.killed_by(DIED % 1, 'rviz') is None
+    assert labs.killed_by('process[rviz-2]: started with pid [11715]\n', 'rviz') is None
+
+
+def test_another_node_killed_by_a_signal_is_not_rviz_killed():
+    other = ('[robot_state_publisher-1] process has died [pid 11714, exit code -9, cmd '
+             '/usr/lib/robot_state_publisher/robot_state_publisher __name:=robot_state_publisher].\n')
+    assert labs.killed_by(other, 'rviz') is None
+    assert labs.killed_by(other + DIED % -11, 'rviz') == 'SIGSEGV'
 
 
 class FakeLaunch:
