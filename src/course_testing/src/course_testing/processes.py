@@ -98,3 +98,28 @@ class ReadPtyProgram(PtyProgram):
         self._reading = False
         self._reader.join()
         return super().stop(timeout)
+
+
+class LoggedLaunch:
+    """A roslaunch (or any command) in a session of its own, its output in a file read back by
+    `output()`; `stop()` stops its process group with SIGINT, as Ctrl-C would."""
+
+    def __init__(self, argv, log_path, env):
+        self.log_path = log_path
+        self._log = open(log_path, 'w')
+        self.process = subprocess.Popen(argv, stdout=self._log, stderr=subprocess.STDOUT,
+                                        stdin=subprocess.DEVNULL, env=env, start_new_session=True)
+
+    def exited(self):
+        """Whether it has ended (a REQUIRED node that died ends a roslaunch)."""
+        return self.process.poll() is not None
+
+    def output(self):
+        with open(self.log_path, errors='replace') as log:
+            return log.read()
+
+    def stop(self, timeout=20.0):
+        try:
+            stop_process_group(self.process, timeout)
+        finally:
+            self._log.close()

@@ -3,7 +3,6 @@ and returns a few summary lines and the pictures it saved."""
 import collections
 import math
 import re
-import signal
 import time
 
 import rospy
@@ -17,6 +16,7 @@ from course_checks import driving
 from course_testing.processes import PtyProgram
 from course_checks.figures import path_length
 from course_common.topic_recorder import TopicRecorder
+from course_testing.rviz import rviz_until_drawn
 from course_testing.screen import VirtualScreen, can_make_screens, red_pixels
 from course_common.waiting import wait_until
 
@@ -214,53 +214,24 @@ def turtlebot3_avoid(session):
     return LabReport(lines, [picture])
 
 
-# roslaunch's line when a node it started ends (a REQUIRED one ends the launch): its exit code, then
-# its command line, which names the node (__name:=rviz).
-NODE_DIED = re.compile(r'process has died \[pid \d+, exit code (-?\d+), cmd ([^\n]*)')
-
-
-def killed_by(launch_output, node):
-    """The signal's name (SIGSEGV) when roslaunch says that `node` of this launch was killed by one,
-    else None (still running, an exit of its own, or another node that died)."""
-    for code, command in NODE_DIED.findall(launch_output):
-        if int(code) < 0 and re.search(r'(^|\s)__name:=%s(\s|\]|$)' % re.escape(node), command):
-            try:
-                return signal.Signals(-int(code)).name
-            except ValueError:
-                return 'signal %d' % -int(code)
-    return None
-
-
 def turtlebot3_rviz(session):
     """001: rviz shows the TurtleBot3 model and its laser scan as red points (on a virtual screen).
 
-    rviz is started once more if a signal killed it before it drew: its software OpenGL set-up has
-    been seen to crash (SIGSEGV, right after "Forcing OpenGl version 0.") once in a fresh machine's
-    first run, and a second start drew. The summary says so."""
+    rviz is started once more if a signal killed it before it drew (course_testing.rviz says why);
+    the summary says so."""
     if not can_make_screens():
         return LabReport(['no screenshot: Xvfb or ImageMagick is missing (tools/setup.sh installs them)'], [])
     screenshot = session.picture('rviz.png')
     world = session.launch('turtlebot3_gazebo', 'turtlebot3_world.launch')
-    lines = []
     with VirtualScreen() as screen:
-        for start in ('first', 'second'):
-            rviz = session.launch('turtlebot3_gazebo', 'turtlebot3_gazebo_rviz.launch',
-                                  env=screen.environment(session.env))
-            # Twice a second: screenshots back to back would starve rviz's software rendering.
-            wait_until(lambda: rviz.exited() or red_pixels(screen.screenshot(screenshot)) > 300, 90,
-                       'rviz to draw the laser points', poll=0.5)
-            if not rviz.exited():
-                break
-            signal_name = killed_by(rviz.output(), 'rviz')
-            session.stop(rviz)
-            if signal_name is None or start == 'second':
-                raise AssertionError('rviz ended before it drew (%s start, %s); its launch said:\n%s' % (
-                    start, signal_name or 'not by a signal', rviz.output()[-1500:]))
-            lines.append('rviz was killed by %s at its first start, before it drew: started again' % signal_name)
+        rviz, notes = rviz_until_drawn(
+            lambda: session.launch('turtlebot3_gazebo', 'turtlebot3_gazebo_rviz.launch',
+                                   env=screen.environment(session.env)),
+            session.stop, screen, screenshot, red_at_least=300)
         red = red_pixels(screenshot)
         session.stop(rviz)
     session.stop(world)
-    return LabReport(lines + ['rviz drew the robot model and the scan: %d laser-red pixels' % red], [screenshot])
+    return LabReport(notes + ['rviz drew the robot model and the scan: %d laser-red pixels' % red], [screenshot])
 
 
 LABS = [

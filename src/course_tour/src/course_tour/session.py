@@ -8,45 +8,33 @@ tour as a whole, marks the environment of what it starts, and what still carries
 it has been stopped is killed (course_common.process_table).
 """
 import os
-import subprocess
 
 import rosgraph
 import rospy
 
 from course_common.process_table import new_mark, stop_marked, with_mark
-from course_common.processes import free_port, stop_process_group
+from course_common.processes import free_port
 from course_common.waiting import wait_until
+from course_testing.processes import LoggedLaunch
 
 
 ROSCORE_PARAMS = {'/run_id', '/rosdistro', '/rosversion'}
 
 
-class Launched:
-    """One roslaunch process; its output goes to a log file that labs can read back."""
+class Launched(LoggedLaunch):
+    """One roslaunch process; its output goes to a log file that labs can read back. What it
+    started and outlived it is stopped with it (by its mark)."""
 
     def __init__(self, argv, log_path, env, params_before=()):
         self.params_before = set(params_before)
-        self.log_path = log_path
-        self._log = open(log_path, 'w')
         self.mark = new_mark('COURSE_TOUR_LAUNCH')
-        self.process = subprocess.Popen(argv, stdout=self._log, stderr=subprocess.STDOUT,
-                                        stdin=subprocess.DEVNULL, env=with_mark(self.mark, env),
-                                        start_new_session=True)
-
-    def exited(self):
-        """Whether roslaunch has ended (a REQUIRED node that died ends it)."""
-        return self.process.poll() is not None
-
-    def output(self):
-        with open(self.log_path, errors='replace') as log:
-            return log.read()
+        super().__init__(argv, log_path, with_mark(self.mark, env))
 
     def stop(self, timeout=20.0):
         try:
-            stop_process_group(self.process, timeout)
+            super().stop(timeout)
         finally:
             stop_marked(self.mark)   # a node that outlived its roslaunch
-            self._log.close()
 
 
 class Session:
