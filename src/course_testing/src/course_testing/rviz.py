@@ -39,9 +39,9 @@ def rviz_until_drawn(start, stop, screen, screenshot, red_at_least, timeout=90.0
 
     `start()` returns the running launch, with `exited()` and `output()` (what it printed so far);
     `stop(launch)` stops it. Returns (launch, notes): the launch that drew, still running, and a
-    sentence for each start that a signal ended. Raises AssertionError when rviz ends by itself, is
-    killed at both starts, or does not draw within `timeout` seconds of a start, and then leaves
-    none of its launches running."""
+    sentence for each start that a signal ended. Raises AssertionError, with the end of what the
+    launch printed, when rviz ends by itself, is killed at both starts, or does not draw within
+    `timeout` seconds of a start; none of its launches is then left running."""
     notes = []
     for start_name in STARTS:
         launch = start()
@@ -49,9 +49,10 @@ def rviz_until_drawn(start, stop, screen, screenshot, red_at_least, timeout=90.0
             # Twice a second: screenshots back to back would starve rviz's software rendering.
             wait_until(lambda: launch.exited() or red_pixels(screen.screenshot(screenshot)) > red_at_least,
                        timeout, 'rviz to draw the laser points (%s start)' % start_name, poll=0.5)
-        except AssertionError:
+        except AssertionError as late:
+            output = launch.output()
             stop(launch)
-            raise
+            raise AssertionError('%s; its launch said:\n%s' % (late, output[-1500:])) from None
         if not launch.exited():
             return launch, notes
         output = launch.output()

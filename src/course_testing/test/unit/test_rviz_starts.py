@@ -91,5 +91,7 @@ def test_rviz_that_exits_by_itself_is_not_started_again(tmp_path, master):
 def test_rviz_that_never_draws_fails_at_the_timeout_and_is_stopped(tmp_path, master):
     launches, notes, failure = until_drawn(tmp_path, master, ['blank', 'draw'], timeout=4.0)
     assert len(launches) == 1
-    assert failure.startswith('timed out after 4.0 s waiting for rviz to draw the laser points (first start)')
+    assert failure.startswith('timed out after 4.0 s waiting for rviz to draw the laser points (first start); '
+                              'its launch said:\n')
+    assert 'process[rviz-1]: started' in failure
     wait_until(launches[0].exited, 5, 'the launch to be stopped')
