@@ -18,9 +18,10 @@ def normalized(lines):
 
 
 def _block_starts(lines):
-    """Where each complete block printed with the slide's labels begins (its separator)."""
+    """Where each complete block printed with the slide's labels begins (its separator). Complete:
+    its fifth value printed too (the output may have been read between the label and its value)."""
     return [start for start, line in enumerate(lines)
-            if line == SEPARATOR and lines[start + 1:start + 11][0::2] == LABELS]
+            if line == SEPARATOR and len(lines) > start + 10 and lines[start + 1:start + 11][0::2] == LABELS]
 
 
 def printed_blocks(lines):

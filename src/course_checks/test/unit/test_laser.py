@@ -155,3 +155,14 @@ def test_a_block_is_timed_by_its_last_line_and_a_cut_block_is_passed_over():
     timed = [(float(i), line) for i, line in enumerate(lines)]
     assert laser.timed_blocks(timed) == [(11.0, ['1', '2', '3', '4', '5']), (22.0, ['6', '7', '8', '9', '10'])]
     assert laser.timed_blocks(timed[:20]) == [(11.0, ['1', '2', '3', '4', '5'])]
+
+
+def test_a_block_read_before_its_last_value_is_not_yet_a_block():
+    """The node prints each label and value on lines of their own: the grader may read the output
+    between the fifth label and its value (CI: an IndexError cost laser_data its 3 points)."""
+    lines = printed(['1', '2', '3', '4', '5'], ['6', '7', '8', '9', '10'])   # the second block: lines 12 - 22
+    timed = [(float(i), line) for i, line in enumerate(lines)]
+    for cut in range(12, 23):
+        assert laser.timed_blocks(timed[:cut]) == [(11.0, ['1', '2', '3', '4', '5'])], cut
+        assert laser.printed_blocks(lines[:cut]) == [['1', '2', '3', '4', '5']], cut
+    assert laser.printed_blocks(lines[:23]) == [['1', '2', '3', '4', '5'], ['6', '7', '8', '9', '10']]

@@ -85,12 +85,16 @@ def test_each_check_gets_what_run_each_is_given():
     assert given == ['the simulators']
 
 
-def test_a_run_that_breaks_down_costs_its_own_criteria(tmp_path):
+def test_a_run_that_breaks_down_costs_its_own_criteria(tmp_path, capsys):
     def broken(_):
         raise RuntimeError("can't start new thread")
     (tmp_path / 'first.log').write_text('starting\nforking\n')
     table = [LabRun('first.launch', broken, {'a': (), 'b': ()}, (NODES,))] + runs([])[1:]
     outcomes = run_each(session(folder=str(tmp_path)), table)
+    # The teacher's log says where in the grader's code it broke (the innermost frame first).
+    logged = re.findall(r'^grade_submission: first.launch broke down \(RuntimeError\) at (.*)$',
+                        capsys.readouterr().out, re.M)
+    assert len(logged) == 1 and re.fullmatch(r'test_run_each\.py:\d+ broken < common\.py:\d+ run_each', logged[0]), logged
     assert outcomes['c'].passed
     assert not outcomes['a'].passed and outcomes['a'].reason == outcomes['b'].reason
     assert outcomes['a'].reason.startswith("the run of first.launch broke down (RuntimeError: can't start new thread); "

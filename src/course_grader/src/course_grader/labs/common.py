@@ -3,6 +3,7 @@ kept (bounded), stopped and explained, and each run costing its own criteria onl
 import errno
 import os
 import time
+import traceback
 from typing import Callable, NamedTuple
 
 from course_checks.robot import left_the_graph, node_names
@@ -118,6 +119,11 @@ def run_each(session, runs, **given):
             if run.criteria:   # the runs, as the student's check lists them (a reading is part of those after it)
                 print('grade_submission: %s checked in %.1f s' % (run.name, time.monotonic() - started), flush=True)
         except Exception as error:   # noqa: B902 (whatever broke, the next checks still run)
+            # For the teacher's log (grader.txt): where in the grader's own code it broke, which may
+            # be the grader's fault. File names, lines and functions only: nothing the student wrote.
+            print('grade_submission: %s broke down (%s) at %s' % (run.name, type(error).__name__, ' < '.join(
+                '%s:%d %s' % (os.path.basename(frame.filename), frame.lineno, frame.name)
+                for frame in reversed(traceback.extract_tb(error.__traceback__)[-4:]))), flush=True)
             tail = feedback.log_tail(session.log_path(os.path.splitext(run.name)[0] + '.log'), 3).splitlines()
             reason = ('the run of %s broke down (%s: %s); the last lines %s printed: %s' % (
                 run.name, type(error).__name__, str(error)[:200] or '-', run.name, ' | '.join(tail) or 'none'))
