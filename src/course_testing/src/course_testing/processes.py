@@ -107,8 +107,10 @@ class LoggedLaunch:
     def __init__(self, argv, log_path, env):
         self.log_path = log_path
         self._log = open(log_path, 'w')
+        # Unbuffered: roslaunch's own lines (and its Python nodes') reach the file as printed.
         self.process = subprocess.Popen(argv, stdout=self._log, stderr=subprocess.STDOUT,
-                                        stdin=subprocess.DEVNULL, env=env, start_new_session=True)
+                                        stdin=subprocess.DEVNULL, env=dict(env, PYTHONUNBUFFERED='1'),
+                                        start_new_session=True)
 
     def exited(self):
         """Whether it has ended (a REQUIRED node that died ends a roslaunch)."""
