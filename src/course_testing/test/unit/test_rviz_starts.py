@@ -2,12 +2,12 @@
 (test/fake_rviz) that is killed by a signal, exits, or draws, as its plan says. (What the tour's
 lab does with two crashes in a row is tested with stand-in launches, in course_tour's units.)"""
 import os
-import subprocess
 
 import pytest
 
-from course_common.processes import free_port, stop_process_group
+from course_common.processes import free_port
 from course_common.waiting import wait_until
+from course_testing.network.rosnet import Processes, start_master
 from course_testing.processes import LoggedLaunch
 from course_testing.rviz import killed_by, rviz_until_drawn
 from course_testing.screen import VirtualScreen, red_pixels
@@ -36,12 +36,17 @@ def test_another_node_killed_by_a_signal_is_not_rviz_killed():
 
 
 @pytest.fixture(scope='module')
-def master():
-    uri = 'http://localhost:%d' % free_port()
-    process = subprocess.Popen(['rosmaster', '--core', '-p', uri.rsplit(':', 1)[1]],
-                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
-    yield uri
-    stop_process_group(process)
+def master(tmp_path_factory):
+    """A master of the tests' own, answering before the first roslaunch (which would otherwise
+    start one of its own on the same port)."""
+    port = free_port()
+    uri = 'http://localhost:%d' % port
+    processes = Processes(tmp_path_factory.mktemp('master'))
+    try:
+        start_master(processes, dict(os.environ, ROS_MASTER_URI=uri), port)
+        yield uri
+    finally:
+        processes.stop_all()
 
 
 class Starts:
