@@ -48,7 +48,11 @@ class HeldClock:
         """Whether the caller should wait a while for a message after this step, before the next:
         until `settling` messages have come, and on the step before the hold."""
         before_hold = self.hold_ns is not None and self.now_ns + self.step_ns >= self.hold_ns
-        return not self.gave_up and (self.heard_count < self.settling or before_hold)
+        return not self.gave_up and (not self.settled() or before_hold)
+
+    def settled(self):
+        """Whether `settling` messages have come (then the clock creeps only before each hold)."""
+        return self.heard_count >= self.settling
 
     def holding(self):
         return self.hold_ns is not None and self.now_ns >= self.hold_ns
@@ -75,14 +79,21 @@ class HeldClock:
         self.hold_ns = None
 
 
-def creep_seconds(latencies, least=0.002, most=0.01):
+def creep_seconds(latencies, settled=True, least=0.002):
     """How long a creeping HeldClock's caller waits after a step for a message sent at it (wall
     seconds): three times the longest of `latencies` (how long the last messages took from a step
-    to their listener), within [least, most]; `most` while none is known. On a quiet machine a
-    message takes 0.5 - 2 ms; a busy one is given the most."""
+    to their listener), at least `least`, at most 10 ms once the clock has settled and 100 ms
+    before; the most while none is known. On a quiet machine a message takes 0.5 - 2 ms.
+    Before it settles the clock must wait for the messages however long they take: one heard after
+    the clock moved on is stamped late, and so is every message after it until one is heard
+    before its hold (a stamp is never earlier than the hold). Left late when the measured messages
+    begin and caught up among them, the stamps shorten the measurement by as much (80 ms of
+    hearing while settling with 10 ms creeps, then messages heard at once: 50.7 Hz for 50).
+    Settled, the clock only creeps on the step before each hold, where 10 ms is enough for a
+    faster publisher's message to be stamped at its step."""
     if not latencies:
-        return most
-    return min(most, max(least, 3 * max(latencies)))
+        return 0.01 if settled else 0.1
+    return min(0.01 if settled else 0.1, max(least, 3 * max(latencies)))
 
 
 def cycles_through(digits, id_number):

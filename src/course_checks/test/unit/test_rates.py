@@ -72,14 +72,15 @@ def test_a_slower_publisher_is_stamped_at_its_own_rate_and_the_clock_holds_no_mo
 
 
 def _graded(clock, period_ns, latencies, creep_ticks=10, patience_ticks=1250, first_due_ns=2000000,
-            busy_ticks=0):
+            busy_ticks=0, settling_creep_ticks=None):
     """The grader's clock and a publisher on it, tick by tick of wall time (one tick: one step at
     the clock's pace): the publisher sends message k as soon as the clock has reached its due time
     first_due_ns + k * period_ns (its schedule accumulates, as ros::Rate's), and it is heard
     latencies[k] ticks later, in order and busy_ticks at least after the one before (the grader
     hearing each in that time); the clock steps once a tick, but holds (given up after
-    patience_ticks), and while it creeps waits creep_ticks after a step for a message. Returns the
-    stamps of the messages heard."""
+    patience_ticks), and while it creeps waits creep_ticks after a step for a message
+    (settling_creep_ticks until it has settled, creep_ticks if None). Returns the stamps of the
+    messages heard."""
     stamps, in_flight, sent, waited, last_arrival = [], [], 0, 0, 0
     for tick in range(200000):
         if len(stamps) == len(latencies):
@@ -97,7 +98,8 @@ def _graded(clock, period_ns, latencies, creep_ticks=10, patience_ticks=1250, fi
             waited += 1
             if waited >= patience_ticks:
                 clock.give_up()
-        elif clock.creeping() and not heard_now and waited < creep_ticks:
+        elif clock.creeping() and not heard_now and waited < (
+                creep_ticks if clock.settled() or settling_creep_ticks is None else settling_creep_ticks):
             waited += 1
         else:
             clock.next_ns()
@@ -118,6 +120,22 @@ def test_messages_heard_late_at_first_do_not_raise_the_rate_once_the_clock_has_s
     assert unsettled > 55.0   # 57.4 Hz was seen on a machine at load 10
     settled = _graded(HeldClock(20000000, 4000000, settling=10), 20000000, latencies, creep_ticks=80)
     assert _measured(settled) == pytest.approx(50.0, abs=0.1)
+
+
+def test_messages_heard_late_while_the_clock_settles_do_not_raise_the_rate_once_heard_at_once():
+    # At 50 Hz: the messages left out and the first two measured are heard 100 ticks (80 ms of wall
+    # time at 5 times real time) after they were sent, the others at once, as when the grader is
+    # kept from the processor while the publisher starts. With 10 ms creeps (12 ticks) while the
+    # clock settles, the stamps are left steps late and catch up among the measured messages: more
+    # than 50.5 Hz, as in CI's held_clock.test failure.
+    latencies = [100] * 12 + [0] * 98
+    too_short = _graded(HeldClock(20000000, 4000000, settling=10), 20000000, latencies, creep_ticks=12)
+    assert _measured(too_short) > 50.5
+    # Creeping up to 100 ms (125 ticks) while it settles, longer than the messages take:
+    settled = _graded(HeldClock(20000000, 4000000, settling=10), 20000000, latencies, creep_ticks=12,
+                      settling_creep_ticks=125)
+    assert [round(later - earlier, 6) for earlier, later in zip(settled[9:], settled[10:])] == [0.02] * 100
+    assert _measured(settled) == pytest.approx(50.0, abs=1e-9)
 
 
 def test_a_settled_clock_measures_a_publisher_two_hertz_off_as_such():
@@ -150,3 +168,20 @@ def test_the_clock_creeps_three_times_as_long_as_the_last_messages_took_within_2
     assert creep_seconds([0.0007, 0.0012, 0.0009]) == pytest.approx(0.0036)
     assert creep_seconds([0.0001]) == 0.002
     assert creep_seconds([0.001, 0.015]) == 0.01   # one message the grader heard late: the most
+
+
+def test_before_it_settles_the_clock_creeps_up_to_100_ms():
+    assert creep_seconds([], settled=False) == 0.1
+    assert creep_seconds([0.0007, 0.0012, 0.0009], settled=False) == pytest.approx(0.0036)
+    assert creep_seconds([0.001, 0.015], settled=False) == pytest.approx(0.045)
+    assert creep_seconds([0.08], settled=False) == 0.1
+
+
+def test_the_clock_settles_once_the_messages_left_out_have_come():
+    clock = HeldClock(20000000, 4000000, settling=2)
+    assert not clock.settled() and clock.creeping()
+    clock.next_ns()
+    clock.heard()
+    assert not clock.settled()
+    clock.heard()
+    assert clock.settled() and not clock.creeping()   # three steps before its hold

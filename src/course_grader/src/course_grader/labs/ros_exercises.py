@@ -114,7 +114,7 @@ class HeldClockDriver:
                 return
             with self.lock:
                 now_ns = self.clock.next_ns()
-                holding, creeping = self.clock.holding(), self.clock.creeping()
+                holding, creeping, settled = self.clock.holding(), self.clock.creeping(), self.clock.settled()
             if now_ns is None:
                 if holding and not self._heard_within(self.PATIENCE):
                     with self.lock:
@@ -128,7 +128,7 @@ class HeldClockDriver:
             self.clock_pub.publish(Clock(rospy.Time(0, now_ns)))
             self.stepped_at = time.monotonic()
             if creeping:
-                self._heard_within(rates.creep_seconds(self.latencies))
+                self._heard_within(rates.creep_seconds(self.latencies, settled))
                 self.pacer.hold(now_ns, time.monotonic())
 
     def _heard_within(self, seconds):
