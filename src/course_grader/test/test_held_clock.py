@@ -4,8 +4,11 @@ message heard by the grader a random while after it came (15 ms on average, as w
 receiving thread waits for the processor on a busy machine): a 50 Hz publisher is measured at
 50 Hz, as the grader counts it (100 messages after the first 10), and one at 52 Hz at 52 Hz. And
 a 50 Hz publisher whose first 12 messages are heard 80 ms late, the others at once (the grader
-kept from the processor while the clock settles), at 50 Hz."""
+kept from the processor while the clock settles), at 50 Hz; one stopped for 1.5 s among the
+measured messages (kept from the processor), at 50 Hz, the clock holding for it."""
+import os
 import random
+import signal
 import subprocess
 import time
 import unittest
@@ -43,9 +46,11 @@ class HeldClockTest(unittest.TestCase):
         rospy.init_node('held_clock_test')
         rospy.set_param('/use_sim_time', True)   # for the publisher, after this node read it
 
-    def measured(self, rate, seed, lateness=None):
+    def measured(self, rate, seed, lateness=None, stopped_for=0.0):
         """The rate measured of the publisher at `rate`, each message heard lateness(k) seconds late
-        (by default a random while, 15 ms on average, drawn from `seed`)."""
+        (by default a random while, 15 ms on average, drawn from `seed`), the publisher stopped for
+        `stopped_for` seconds after the 40th message; self.held says whether the clock still held
+        at the end (it had not taken the publisher for a slower one)."""
         randomly = random.Random(seed)
 
         def a_random_while(_):
@@ -55,7 +60,13 @@ class HeldClockTest(unittest.TestCase):
                                       '__name:=publisher_%d' % seed], stdout=subprocess.DEVNULL,
                                      start_new_session=True)
         try:
+            if stopped_for:
+                wait_until(lambda: len(driver.entries) >= 40, 60, 'the publisher\'s first 40 messages')
+                os.killpg(publisher.pid, signal.SIGSTOP)
+                time.sleep(stopped_for)   # how long the test keeps it stopped, not a wait
+                os.killpg(publisher.pid, signal.SIGCONT)
             wait_until(lambda: len(driver.entries) >= SKIPPED + MESSAGES, 60, 'the publisher\'s messages')
+            self.held = not driver.clock.gave_up
             return rates.rate_of(driver.entries[SKIPPED:SKIPPED + MESSAGES])
         finally:
             driver.close()
@@ -71,6 +82,12 @@ class HeldClockTest(unittest.TestCase):
         def late_at_first(k):
             return 0.08 if k < SKIPPED + 2 else 0.0
         self.assertAlmostEqual(self.measured(50, 5, late_at_first), 50.0, delta=0.1)
+
+    def test_a_50_hz_publisher_stopped_for_a_while_is_measured_at_50_hz(self):
+        # With 1 s of patience the clock took it for a slower publisher and ran on at 5 times real
+        # time, faster than a publisher on a busy machine follows: 12 to 16 Hz (CI: 11.7 Hz).
+        self.assertAlmostEqual(self.measured(50, 6, stopped_for=1.5), 50.0, delta=0.5)
+        self.assertTrue(self.held, 'the clock gave up holding for the stopped publisher')
 
     def test_a_52_hz_publisher_heard_late_is_measured_at_52_hz(self):
         self.assertAlmostEqual(self.measured(52, 4), 52.0, delta=0.5)   # beyond the rubric's 1 Hz
