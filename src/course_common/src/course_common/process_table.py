@@ -163,18 +163,35 @@ def stop_user(uid, reaper=None):
 
 # The reaper's program: it drops root for good, its real and saved ids `nobody`'s and its effective
 # user id the student's, then kills every process of that user (kill(-1): one system call, which no
-# fork can race) each time a byte comes, until none is left, and answers with a byte.
+# fork can race) each time a byte comes, again until none is left running, and answers with a byte.
+# A process killed runs on until it has exited, longer on a busy machine: the reaper answers once
+# the process table names none (zombies aside), or after 10 s; where there is no table to read,
+# after a thousand kills.
 REAPER = r"""
-import os, signal, sys
+import os, signal, sys, time
+sys.path.insert(0, PACKAGES)
+from course_common.process_table import NoProcessTable, user_processes
 os.setgroups([])
 os.setresgid(NOBODY, NOBODY, NOBODY)
 os.setresuid(NOBODY, UID, NOBODY)
+
+def running():
+    try:
+        return [pid for pid in user_processes(UID) if pid != os.getpid()]
+    except NoProcessTable:
+        return []
+
 while sys.stdin.buffer.read(1):
-    for _ in range(1000):
+    deadline = time.monotonic() + 10
+    for kills in range(1000000):
         try:
             os.kill(-1, signal.SIGKILL)
         except ProcessLookupError:
             break
+        if kills >= 1000:
+            if not running() or time.monotonic() > deadline:
+                break
+            time.sleep(0.001)
     sys.stdout.buffer.write(b'.')
     sys.stdout.flush()
 """
@@ -189,7 +206,8 @@ class UserReaper:
     and may neither signal nor trace the reaper (whose real and saved user is nobody)."""
 
     def __init__(self, uid):
-        program = REAPER.replace('NOBODY', str(NOBODY)).replace('UID', str(uid))
+        packages = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))   # where course_common is
+        program = REAPER.replace('NOBODY', str(NOBODY)).replace('UID', str(uid)).replace('PACKAGES', repr(packages))
         self.process = subprocess.Popen([sys.executable, '-c', program], stdin=subprocess.PIPE,
                                         stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, start_new_session=True)
 
