@@ -91,9 +91,10 @@ def creep_seconds(latencies, settled=True, least=0.002):
     hearing while settling with 10 ms creeps, then messages heard at once: 50.7 Hz for 50).
     Settled, the clock only creeps on the step before each hold, where 10 ms is enough for a
     faster publisher's message to be stamped at its step."""
+    most = 0.01 if settled else 0.1
     if not latencies:
-        return 0.01 if settled else 0.1
-    return min(0.01 if settled else 0.1, max(least, 3 * max(latencies)))
+        return most
+    return min(most, max(least, 3 * max(latencies)))
 
 
 def cycles_through(digits, id_number):
