@@ -5,7 +5,10 @@ receiving thread waits for the processor on a busy machine): a 50 Hz publisher i
 50 Hz, as the grader counts it (100 messages after the first 10), and one at 52 Hz at 52 Hz. And
 a 50 Hz publisher whose first 12 messages are heard 80 ms late, the others at once (the grader
 kept from the processor while the clock settles), at 50 Hz; one stopped for 1.5 s among the
-measured messages (kept from the processor), at 50 Hz, the clock holding for it."""
+measured messages (kept from the processor), at 50 Hz, the clock holding for it; and one paused
+with the grader (the whole machine paused) for longer than the clock holds, as the clock holds for
+its message, at 50 Hz, the clock still holding."""
+import collections
 import os
 import random
 import signal
@@ -26,12 +29,33 @@ SKIPPED, MESSAGES = 10, 100
 
 
 class LateHearingDriver(HeldClockDriver):
-    """The grader's driver, message k handed on lateness(k) seconds late."""
+    """The grader's driver, message k handed on lateness(k) seconds late; after pause_machine(), the
+    machine paused once after the 40th message: the publisher stopped on the step before a hold
+    (its message not yet due), then the grader too as the clock holds, both continued `seconds`
+    later."""
 
     def __init__(self, lateness, *args):
         self.lateness = lateness
         self.handed_on = 0
+        self.pausing = None   # (the publisher's process group, seconds) until the pause is made
+        self.publisher_stopped = False
+        self.pauser = None
         super().__init__(*args)
+
+    def pause_machine(self, group, seconds):
+        self.pausing = (group, seconds)
+
+    def _heard_within(self, seconds):
+        if self.pausing and self.handed_on >= 40:
+            group, paused_for = self.pausing
+            if seconds != self.PATIENCE:   # a creep: on the step before the hold
+                os.killpg(group, signal.SIGSTOP)
+                self.publisher_stopped = True
+            elif self.publisher_stopped:   # the clock holds for the stopped publisher's message
+                self.pausing = None
+                self.pauser = subprocess.Popen(['sh', '-c', 'kill -s STOP %d; sleep %s; kill -s CONT %d; kill -s CONT -- -%d' % (
+                    os.getpid(), paused_for, os.getpid(), group)])
+        return super()._heard_within(seconds)
 
     def _heard(self, message):
         time.sleep(self.lateness(self.handed_on))   # the delay the test adds, not a wait
@@ -46,11 +70,13 @@ class HeldClockTest(unittest.TestCase):
         rospy.init_node('held_clock_test')
         rospy.set_param('/use_sim_time', True)   # for the publisher, after this node read it
 
-    def measured(self, rate, seed, lateness=None, stopped_for=0.0):
+    def measured(self, rate, seed, lateness=None, stopped_for=0.0, machine_paused_for=0.0):
         """The rate measured of the publisher at `rate`, each message heard lateness(k) seconds late
         (by default a random while, 15 ms on average, drawn from `seed`), the publisher stopped for
-        `stopped_for` seconds after the 40th message; self.held says whether the clock still held
-        at the end (it had not taken the publisher for a slower one)."""
+        `stopped_for` seconds after the 40th message, or paused with the grader for
+        `machine_paused_for` seconds (LateHearingDriver.pause_machine); self.held says whether the
+        clock still held at the end (it had not taken the publisher for a slower one), self.story
+        that and the intervals measured (a failure's message)."""
         randomly = random.Random(seed)
 
         def a_random_while(_):
@@ -60,37 +86,53 @@ class HeldClockTest(unittest.TestCase):
                                       '__name:=publisher_%d' % seed], stdout=subprocess.DEVNULL,
                                      start_new_session=True)
         try:
+            if machine_paused_for:
+                driver.pause_machine(publisher.pid, machine_paused_for)
             if stopped_for:
                 wait_until(lambda: len(driver.entries) >= 40, 60, 'the publisher\'s first 40 messages')
                 os.killpg(publisher.pid, signal.SIGSTOP)
                 time.sleep(stopped_for)   # how long the test keeps it stopped, not a wait
                 os.killpg(publisher.pid, signal.SIGCONT)
             wait_until(lambda: len(driver.entries) >= SKIPPED + MESSAGES, 60, 'the publisher\'s messages')
+            measured = driver.entries[SKIPPED:SKIPPED + MESSAGES]
             self.held = not driver.clock.gave_up
-            return rates.rate_of(driver.entries[SKIPPED:SKIPPED + MESSAGES])
+            intervals = collections.Counter(round((later - earlier) * 1000)
+                                            for (earlier, _), (later, _) in zip(measured, measured[1:]))
+            self.story = 'the clock holding at the end: %s; intervals (ms: how many): %s' % (
+                self.held, dict(sorted(intervals.items())))
+            return rates.rate_of(measured)
         finally:
             driver.close()
             stop_process_group(publisher)
+            if driver.pauser:
+                driver.pauser.wait()
 
     def test_a_50_hz_publisher_heard_late_is_measured_at_50_hz(self):
         for seed in (1, 2, 3):
-            self.assertAlmostEqual(self.measured(50, seed), 50.0, delta=0.5)
+            self.assertAlmostEqual(self.measured(50, seed), 50.0, delta=0.5, msg=self.story)
 
     def test_a_50_hz_publisher_heard_late_while_the_clock_settles_is_measured_at_50_hz(self):
         # With 10 ms creeps while the clock settled, such stamps were left steps late and caught up
         # among the measured messages: more than 50.5 Hz (CI's failure of this file, on a busy host).
         def late_at_first(k):
             return 0.08 if k < SKIPPED + 2 else 0.0
-        self.assertAlmostEqual(self.measured(50, 5, late_at_first), 50.0, delta=0.1)
+        self.assertAlmostEqual(self.measured(50, 5, late_at_first), 50.0, delta=0.1, msg=self.story)
 
     def test_a_50_hz_publisher_stopped_for_a_while_is_measured_at_50_hz(self):
         # With 1 s of patience the clock took it for a slower publisher and ran on at 5 times real
         # time, faster than a publisher on a busy machine follows: 12 to 16 Hz (CI: 11.7 Hz).
-        self.assertAlmostEqual(self.measured(50, 6, stopped_for=1.5), 50.0, delta=0.5)
+        self.assertAlmostEqual(self.measured(50, 6, stopped_for=1.5), 50.0, delta=0.5, msg=self.story)
         self.assertTrue(self.held, 'the clock gave up holding for the stopped publisher')
 
+    def test_a_50_hz_publisher_paused_with_the_grader_while_the_clock_holds_is_measured_at_50_hz(self):
+        # A paused machine says nothing of the publisher: counted against it, the clock took it for a
+        # slower publisher (CI failed this file twice on a publisher measured off 50 Hz).
+        self.assertAlmostEqual(self.measured(50, 7, machine_paused_for=HeldClockDriver.PATIENCE + 0.5), 50.0,
+                               delta=0.5, msg=self.story)
+        self.assertTrue(self.held, 'the clock gave up holding for the paused publisher; ' + self.story)
+
     def test_a_52_hz_publisher_heard_late_is_measured_at_52_hz(self):
-        self.assertAlmostEqual(self.measured(52, 4), 52.0, delta=0.5)   # beyond the rubric's 1 Hz
+        self.assertAlmostEqual(self.measured(52, 4), 52.0, delta=0.5, msg=self.story)   # beyond the rubric's 1 Hz
 
 
 if __name__ == '__main__':

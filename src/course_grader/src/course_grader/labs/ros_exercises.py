@@ -14,7 +14,7 @@ from std_msgs.msg import Int32
 
 from course_checks import figures, rates, turtle
 from course_checks.verdict import Verdict
-from course_common.waiting import Deadline
+from course_common.waiting import Deadline, wait_in_slices
 from course_common.timing import Pacer
 from course_grader import feedback
 from course_grader.labs.common import LabRun, criteria_of, run_each
@@ -132,9 +132,11 @@ class HeldClockDriver:
                 self.pacer.hold(now_ns, time.monotonic())
 
     def _heard_within(self, seconds):
-        """Whether a message came within `seconds`; if so, how long after the last step it was heard
-        is one of the latencies (the message was due at that step, or sent at it while creeping)."""
-        if not self.heard_one.wait(seconds):
+        """Whether a message came within `seconds` of the grader's own time (waiting.wait_in_slices: a
+        machine paused while the clock held for a message due, the publisher with it, does not
+        count against the publisher); if so, how long after the last step it was heard is one of the
+        latencies (the message was due at that step, or sent at it while creeping)."""
+        if not wait_in_slices(self.heard_one.wait, seconds):
             return False
         self.latencies.append(time.monotonic() - self.stepped_at)
         return True
