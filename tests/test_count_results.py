@@ -31,12 +31,24 @@ def test_a_failing_case_inside_a_rostest_counts_as_failed(tmp_path):
 def test_a_failures_last_lines_are_printed_under_its_name(tmp_path):
     traceback = '\n'.join(['Traceback (most recent call last):'] + ['  line %d' % n for n in range(10)] +
                           ['AssertionError: 0.6 != 0.5'])
-    write(tmp_path, 'rosunit-square.xml', [('corners', '<failure message="off">%s</failure>' % traceback)])
+    write(tmp_path, 'rosunit-square.xml', [('corners', '<failure message="AssertionError: 0.6 != 0.5">%s</failure>'
+                                            % traceback)])
     write(tmp_path, 'rostest-test_square.xml', [('testsquare', '')])
     out = run_counter(tmp_path)[2]
     assert 'FAILED: t.corners\n' + ''.join('      line %d\n' % n for n in range(5, 10)) + \
         '    AssertionError: 0.6 != 0.5\n' in out
-    assert 'Traceback' not in out
+    assert 'Traceback' not in out and out.count('0.6 != 0.5') == 1
+
+
+def test_a_rosunit_failure_shows_the_values_it_begins_with_above_its_traceback(tmp_path):
+    # rosunit writes the assertion's message first, then the traceback, which ends at the test's line.
+    text = '\n'.join(['17.38 != 50.0 within 0.5 delta : the clock holding at the end: False'] +
+                     ['  File "case.py", line %d, in run' % n for n in range(10)])
+    write(tmp_path, 'rosunit-held.xml', [('rate', '<failure type="AssertionError">%s</failure>' % text)])
+    write(tmp_path, 'rostest-test_held.xml', [('testheld', '')])
+    out = run_counter(tmp_path)[2]
+    assert 'FAILED: t.rate\n    17.38 != 50.0 within 0.5 delta : the clock holding at the end: False\n' + \
+        ''.join('      File "case.py", line %d, in run\n' % n for n in range(4, 10)) in out
 
 
 def test_a_rostest_whose_node_died_counts_as_failed(tmp_path):

@@ -42,13 +42,18 @@ WHY_LINES = 6
 
 
 def why_it_failed(case):
-    """The last lines of a failed case's <failure> or <error> (message and text), indented."""
+    """A failed case's <failure> or <error> (message and text), indented: its first line and its last
+    lines. pytest ends the text with the assertion's values; rosunit begins it with them and ends it
+    with the traceback."""
     found = case.find('failure')
     found = found if found is not None else case.find('error')
     text = '%s\n%s' % (found.get('message') or '', found.text or '')
     lines = [line.rstrip()[:300] for line in text.replace('<![CDATA[', '').replace(']]>', '').splitlines()
              if line.strip()]
-    return ''.join('\n    ' + line for line in lines[-WHY_LINES:])
+    shown = lines[-WHY_LINES:]
+    if lines and lines[0] not in shown:
+        shown.insert(0, lines[0])
+    return ''.join('\n    ' + line for line in shown)
 
 
 def count(folder, expected=()):
