@@ -32,11 +32,11 @@ def wait_until(condition, timeout, what='the condition', poll=0.01):
 
 def wait_in_slices(wait, seconds, slice_seconds=0.05):
     """Whether wait(s) (a timed wait answering whether what it waits for came within s seconds, as
-    threading.Event.wait) answers True within `seconds` of the waiter's own time (rounded up to whole
-    slices). The wait is made in slices, each counted as long as it was asked: a slice that ends later than asked (the waiter
-    kept from the processor, most likely with the rest of the machine: a paused virtual machine, a
-    host swapping) costs no more than asked, so what the waiter waits for gets its `seconds` of a
-    running machine after all."""
+    threading.Event.wait) answers True within `seconds` of the waiter's own time (rounded up to
+    whole slices). The wait is made in slices, each counted as long as it was asked: a slice that
+    ends later than asked (the waiter kept from the processor, most likely with the rest of the
+    machine: a paused virtual machine, a host swapping) costs no more than asked, so what the
+    waiter waits for gets its `seconds` of a running machine after all."""
     for _ in range(max(1, math.ceil(seconds / slice_seconds - 1e-9))):
         if wait(min(slice_seconds, seconds)):
             return True
