@@ -22,8 +22,8 @@ def kept_rate(times):
 
 class HeldClock:
     """A simulated clock for measuring a publisher's rate whatever the machine's load: it steps on
-    `step_ns` at a time, but once `settling` messages have come (heard()), it holds one expected
-    period after the last message heard until the next one comes (a publisher on simulated time cannot publish before its period is over, and one kept
+    `step_ns` at a time, but holds one expected period after the last message heard until the next
+    one comes (a publisher on simulated time cannot publish before its period is over, and one kept
     from the processor finds the clock where it left it), or until its caller gives up waiting:
     then the publisher is slower than that period and the clock no longer holds. The messages'
     stamps are the clock's time when they came: never earlier than the publisher published them,
@@ -67,13 +67,9 @@ class HeldClock:
         return self.now_ns
 
     def heard(self):
-        """A message came: its stamp (seconds); once settled, the clock holds one period on. Not
-        before: a roscpp node that slept from time zero (its first message sent before it had a
-        time) wakes a period after the first time it hears, which comes after its message if its
-        /clock subscription was connected later than its topic's: held one period after that
-        message, the clock would wait for it until it gave up."""
+        """A message came: its stamp (seconds); the clock holds one period on."""
         self.heard_count += 1
-        if not self.gave_up and self.settled():
+        if not self.gave_up:
             self.hold_ns = self.now_ns + self.period_ns
         return self.now_ns / 1e9
 

@@ -185,14 +185,3 @@ def test_the_clock_settles_once_the_messages_left_out_have_come():
     assert not clock.settled()
     clock.heard()
     assert clock.settled() and not clock.creeping()   # three steps before its hold
-
-
-def test_the_clock_holds_only_once_settled():
-    # A roscpp publisher whose first message was sent at time zero wakes a period after the first
-    # time it hears: held one period after that message, the clock could wait for it without end.
-    clock = HeldClock(20000000, 4000000, settling=2)
-    clock.next_ns()
-    clock.heard()
-    assert [clock.next_ns() for _ in range(10)][-1] == 44000000 and clock.hold_ns is None
-    clock.heard()
-    assert [clock.next_ns() for _ in range(6)][-2:] == [64000000, None]   # held one period on
