@@ -33,7 +33,13 @@ class HeldClock:
     were sent at, and the rate from first to last over n messages is the publisher's within a step
     in n - 1. Without it, messages sent while the clock ran freely before the first one came could
     keep the stamps periods late until they came at once, and a faster publisher's messages, heard
-    as the clock reached each hold, were stamped one period apart."""
+    as the clock reached each hold, were stamped one period apart.
+
+    The clock holds only for messages heard a period or more after the first one: a publisher
+    started before it had a time (a first /clock heard) sends its first message at time zero, and
+    roscpp's and rospy's sleeps from time zero wait for the first time the publisher hears, then a
+    whole period. Heard before it heard that time, such a message would put the hold before the
+    publisher's next message, and the clock would wait for it until its caller gave up."""
 
     def __init__(self, period_ns, step_ns, settling=0):
         self.period_ns = period_ns
@@ -42,6 +48,7 @@ class HeldClock:
         self.heard_count = 0
         self.now_ns = 0
         self.hold_ns = None   # where the clock waits for the next message; None: it does not
+        self.first_heard_ns = None   # the first message's stamp: the clock holds from a period after it
         self.gave_up = False
 
     def creeping(self):
@@ -67,9 +74,12 @@ class HeldClock:
         return self.now_ns
 
     def heard(self):
-        """A message came: its stamp (seconds); the clock holds one period on."""
+        """A message came: its stamp (seconds); the clock holds one period on (from a period after
+        the first message)."""
         self.heard_count += 1
-        if not self.gave_up:
+        if self.first_heard_ns is None:
+            self.first_heard_ns = self.now_ns
+        if not self.gave_up and self.now_ns >= self.first_heard_ns + self.period_ns:
             self.hold_ns = self.now_ns + self.period_ns
         return self.now_ns / 1e9
 

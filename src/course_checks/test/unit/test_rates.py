@@ -40,18 +40,19 @@ def _run(clock, publishes_at, steps, runs_every=1):
 
 
 def test_the_held_clock_stamps_a_publisher_at_its_rate():
+    # From the second message: the clock holds from a period after the first.
     stamps = _run(HeldClock(20000000, 1000000), [k * 20000000 + 3000000 for k in range(20)], 1000)
-    assert rate_of([(t, None) for t in stamps]) == pytest.approx(50.0)
+    assert rate_of([(t, None) for t in stamps[1:]]) == pytest.approx(50.0)
     # Steps that do not divide the period: it holds where the period ends all the same.
     stamps = _run(HeldClock(20000000, 3000000), [k * 20000000 + 3000000 for k in range(20)], 1000)
-    assert rate_of([(t, None) for t in stamps]) == pytest.approx(50.0)
+    assert rate_of([(t, None) for t in stamps[1:]]) == pytest.approx(50.0)
 
 
 def test_a_publisher_kept_from_the_processor_keeps_its_rate_within_one_period_in_n():
     # 50 Hz from 3 ms on: the publisher runs one step in 50 (on its own clock, 50 ms: 2.5 periods).
     stamps = _run(HeldClock(20000000, 1000000), [k * 20000000 + 3000000 for k in range(100)], 100000, 50)
     assert len(stamps) == 100
-    assert rate_of([(t, None) for t in stamps]) == pytest.approx(50.0, rel=1 / 99)
+    assert rate_of([(t, None) for t in stamps[1:]]) == pytest.approx(50.0, rel=1 / 98)
     assert stamps[-1] - stamps[-2] == pytest.approx(0.02)   # held where the period ends
 
 
@@ -59,9 +60,23 @@ def test_the_held_clock_waits_for_a_late_message():
     clock = HeldClock(20000000, 1000000)
     clock.next_ns()
     clock.heard()
-    assert [clock.next_ns() for _ in range(21)][-2:] == [21000000, None]   # held one period on
+    assert [clock.next_ns() for _ in range(20)][-1] == 21000000
+    assert clock.heard() == pytest.approx(0.021)   # a period after the first: the clock holds from here
+    assert [clock.next_ns() for _ in range(21)][-2:] == [41000000, None]   # held one period on
     assert clock.next_ns() is None
-    assert clock.heard() == pytest.approx(0.021)   # the late message is stamped where it held
+    assert clock.heard() == pytest.approx(0.041)   # the late message is stamped where it held
+
+
+def test_a_first_message_sent_before_the_publisher_had_a_time_is_not_held_for():
+    # Sent at time zero and heard at 4 ms; the publisher hears its first time at 8 ms and sleeps a
+    # period from there. Held one period after that first message (24 ms), the clock would wait for
+    # a message due at 28 ms until its caller gave up.
+    clock = HeldClock(20000000, 4000000)
+    clock.next_ns()
+    clock.heard()
+    assert [clock.next_ns() for _ in range(6)] == [8000000, 12000000, 16000000, 20000000, 24000000, 28000000]
+    assert clock.heard() == pytest.approx(0.028)
+    assert [clock.next_ns() for _ in range(6)] == [32000000, 36000000, 40000000, 44000000, 48000000, None]
 
 
 def test_a_slower_publisher_is_stamped_at_its_own_rate_and_the_clock_holds_no_more():
