@@ -104,8 +104,8 @@ class HeldClockTest(unittest.TestCase):
             self.held, self.paused = not driver.clock.gave_up, driver.pauser is not None
             intervals = collections.Counter(round((later - earlier) * 1000)
                                             for (earlier, _), (later, _) in zip(measured, measured[1:]))
-            self.story = 'the clock holding at the end: %s; intervals (ms: how many): %s' % (
-                self.held, dict(sorted(intervals.items())))
+            self.story = 'the clock holding at the end: %s; the machine paused: %s; intervals (ms: how many): %s' % (
+                self.held, self.paused, dict(sorted(intervals.items())))
             return rates.rate_of(measured)
         finally:
             driver.close()
