@@ -2,6 +2,7 @@
 they are ranges of scans the simulator published: any of them (printed_scans), or, with the time
 each line was read and each scan sent, the scan of the moment each block was printed, in order
 (printed_in_time)."""
+import bisect
 import math
 
 from course_checks.verdict import Verdict
@@ -83,16 +84,22 @@ def printed_scans(blocks, scans, beams, needed):
     return Verdict(len(blocks) >= needed and not unmatched, seen)
 
 
-def shown_scans(blocks, sent, beams, window):
+def shown_scans(blocks, sent, beams, window, window_scans=0):
     """Which scan each printed block shows, in order. For (time.monotonic() read, values) blocks and
-    (time.monotonic() sent, LaserScan) scans: the index of the first scan after the previous
-    block's whose ranges the block printed, sent at most `window` s before the block was read (and
-    not after). The list stops at the first block that shows none."""
+    (time.monotonic() sent, LaserScan) scans, in the order sent: the index of the first scan after
+    the previous block's whose ranges the block printed, sent before the block was read, at most
+    `window` s before or among the last `window_scans` scans sent before (the window at the
+    simulator's own pace: a machine paused between a scan and its block, the simulator with it,
+    sends no scan meanwhile, and its pause does not count against the block). The list stops at the
+    first block that shows none."""
     ranges = [beam_ranges(scan, beams) for _, scan in sent]
+    sent_times = [time for time, _ in sent]
     shown, after = [], -1
     for read, block in blocks:
-        found = next((i for i in range(after + 1, len(sent))
-                      if 0 <= read - sent[i][0] <= window and shows(block, ranges[i])), None)
+        sent_before = bisect.bisect_right(sent_times, read)   # the scans sent up to the read
+        found = next((i for i in range(after + 1, sent_before)
+                      if (read - sent[i][0] <= window or sent_before - i <= window_scans)
+                      and shows(block, ranges[i])), None)
         if found is None:
             break
         shown.append(found)
@@ -116,10 +123,10 @@ def _why_unshown(block, read, sent, beams, shown):
     return 'the scan with those ranges was sent %s' % when
 
 
-def printed_in_time(blocks, sent, beams, needed, window):
+def printed_in_time(blocks, sent, beams, needed, window, window_scans=0):
     """At least `needed` blocks were printed, each the scan of the moment it was printed, each a
     later scan than the block before (shown_scans)."""
-    shown = shown_scans(blocks, sent, beams, window)
+    shown = shown_scans(blocks, sent, beams, window, window_scans)
     if len(shown) < len(blocks):
         read, block = blocks[len(shown)]
         start = sent[0][0] if sent else read

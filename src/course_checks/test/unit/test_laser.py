@@ -117,10 +117,30 @@ def test_a_scan_printed_later_than_the_window_fails_with_its_age():
         'the scan with those ranges was sent 0.500 s before it)')
 
 
+def test_a_block_read_after_a_machine_pause_is_the_scan_of_its_moment_within_the_scans_of_the_window():
+    # The machine paused 1.5 s between scan 9 and its block, the simulator with it: no scan sent
+    # meanwhile. The block is older than the window in wall seconds, not in the scans sent since.
+    scans = sent(10) + [(9 * PERIOD + 1.5 + i * PERIOD, scan(2.0 + i / 10)) for i in range(1, 4)]
+    blocks = [block(scans[9][0] + 1.5 + PERIOD + 0.001, scans[9][1]), block(scans[11][0] + 0.002, scans[11][1])]
+    assert laser.shown_scans(blocks, scans, BEAMS, WINDOW) == []
+    assert laser.shown_scans(blocks, scans, BEAMS, WINDOW, window_scans=5) == [9, 11]
+    assert laser.printed_in_time(blocks, scans, BEAMS, 2, WINDOW, 5).passed
+
+
+def test_a_block_behind_by_more_scans_and_seconds_than_the_window_fails():
+    # A node that lags alone (the simulator sending on): 8 scans behind, 0.16 s.
+    scans = sent(20)
+    blocks = [block(scans[12][0] + 0.165, scans[12][1])]
+    assert laser.shown_scans(blocks, scans, BEAMS, WINDOW, window_scans=5) == []
+    assert laser.shown_scans(blocks, scans, BEAMS, WINDOW, window_scans=9) == [12]
+    assert laser.printed_in_time(blocks, scans, BEAMS, 1, WINDOW, 5).reason.endswith(
+        'the scan with those ranges was sent 0.165 s before it)')
+
+
 def test_a_scan_printed_before_it_was_sent_is_no_scan_of_its_moment():
     scans = sent(5)
     blocks = [block(scans[4][0] - 0.01, scans[4][1])]
-    assert laser.shown_scans(blocks, scans, BEAMS, WINDOW) == []
+    assert laser.shown_scans(blocks, scans, BEAMS, WINDOW, window_scans=5) == []
     assert laser.printed_in_time(blocks, scans, BEAMS, 1, WINDOW).reason.endswith(
         'the scan with those ranges was sent 0.010 s after it)')
 
