@@ -7,6 +7,7 @@ import subprocess
 
 import yaml
 
+from course_grader import rubric as rubrics
 from course_grader.submission import safe_name
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..', '..'))
@@ -36,6 +37,16 @@ def outscored_twins(lab, rows):
                                                     rows[wanted['twin']]['score'])
             for student, wanted in sorted(expected(lab).items())
             if 'twin' in wanted and student in rows and float(rows[student]['score']) > float(rows[wanted['twin']]['score'])]
+
+
+def edited_rubric(lab, path, edit):
+    """The lab's rubric as edit(data) leaves it, written to `path` (for --rubric): returns path."""
+    with open(rubrics.load(lab).path) as stream:
+        data = yaml.safe_load(stream)
+    edit(data)
+    with open(path, 'w') as stream:
+        yaml.safe_dump(data, stream)
+    return path
 
 
 def read_results(out):

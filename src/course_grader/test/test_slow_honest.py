@@ -11,11 +11,10 @@ import tempfile
 import unittest
 
 import rostest
-import yaml
 
 from course_grader import rubric as rubrics
 from course_grader.labs import wall_limit_of
-from example_class import make_class
+from example_class import edited_rubric, make_class
 
 LIMITS = {'build_seconds': 50, 'run_seconds': 14, 'start_seconds': 6, 'stop_seconds': 4}
 BUILD_SLEEP = 20   # s of the build's own; catkin_make takes the rest (10 s, 25 s beside a whole suite)
@@ -51,13 +50,8 @@ def slow_model(folder):
 
 def small_rubric(folder):
     """move_turtlebot3's rubric with LIMITS."""
-    with open(rubrics.load('move_turtlebot3').path) as stream:
-        data = yaml.safe_load(stream)
-    data['limits'] = LIMITS
-    path = os.path.join(folder, 'small_limits.yaml')
-    with open(path, 'w') as stream:
-        yaml.safe_dump(data, stream)
-    return path
+    return edited_rubric('move_turtlebot3', os.path.join(folder, 'small_limits.yaml'),
+                         lambda data: data.update(limits=LIMITS))
 
 
 class SlowHonestTest(unittest.TestCase):
