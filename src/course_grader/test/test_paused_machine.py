@@ -4,7 +4,6 @@ and laser_data.py's block of it: the processes on the grading's ROS master (fake
 a virtual machine descheduled or a host swapping would stop them, while the node waits. The block is
 printed 1.5 s after its scan, later than print_window's second of wall time, but no scan was sent
 meanwhile: laser_data gets its 3 points (it got none when the window was wall time only)."""
-import json
 import os
 import re
 import subprocess
@@ -13,7 +12,7 @@ import unittest
 
 import rostest
 
-from example_class import edited_rubric, make_class
+from example_class import edited_rubric, make_class, read_results
 
 PAUSE = 1.5   # wall seconds the machine is paused, more than print_window
 # Put before laser_data.py's init_node, its callback renamed the_slides_callback: on the third
@@ -21,19 +20,12 @@ PAUSE = 1.5   # wall seconds the machine is paused, more than print_window
 # PAUSE seconds while this one waits, and their command lines are written to the file named.
 PAUSE_THE_MACHINE = '''def pause_the_machine():
     import os, subprocess
-    master = b'ROS_MASTER_URI=' + os.environ['ROS_MASTER_URI'].encode() + b'\\0'
-    stopped = {}
-    for pid in filter(str.isdigit, os.listdir('/proc')):
-        try:
-            with open('/proc/%%s/environ' %% pid, 'rb') as environ, open('/proc/%%s/cmdline' %% pid, 'rb') as cmdline:
-                if int(pid) != os.getpid() and master in environ.read():
-                    stopped[pid] = cmdline.read().replace(b'\\0', b' ').decode(errors='replace')
-        except OSError:
-            pass
-    listed = ' '.join(stopped)
+    from course_common.process_table import command_line, marked_processes
+    stopped = marked_processes('ROS_MASTER_URI=' + os.environ['ROS_MASTER_URI'])
+    listed = ' '.join(map(str, stopped))
     subprocess.run(['sh', '-c', 'kill -s STOP %%s; sleep %s; kill -s CONT %%s' %% (listed, listed)])
     with open(%r, 'w') as stream:
-        stream.write('\\n'.join(stopped.values()))
+        stream.write('\\n'.join(map(command_line, stopped)))
 
 
 scans_heard = [0]
@@ -85,8 +77,7 @@ class PausedMachineTest(unittest.TestCase):
                                      '--rubric', rubric, '--out', out, package], stdout=subprocess.PIPE,
                                     stderr=subprocess.STDOUT, universal_newlines=True, stdin=subprocess.DEVNULL)
             self.assertEqual(graded.returncode, 0, graded.stdout)
-            with open(os.path.join(out, 'paused_machine', 'result.json')) as stream:
-                result = json.load(stream)
+            result = read_results(out)[1]['paused_machine']
             with open(paused_list) as stream:
                 paused = stream.read()
         print('paused:\n' + paused)

@@ -93,7 +93,7 @@ def shown_scans(blocks, sent, beams, window, window_scans=0):
     sends no scan meanwhile, and its pause does not count against the block). The list stops at the
     first block that shows none."""
     ranges = [beam_ranges(scan, beams) for _, scan in sent]
-    sent_times = [time for time, _ in sent]
+    sent_times = [at for at, _ in sent]
     shown, after = [], -1
     for read, block in blocks:
         sent_before = bisect.bisect_right(sent_times, read)   # the scans sent up to the read
