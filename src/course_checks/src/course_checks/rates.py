@@ -1,20 +1,28 @@
 """Rates of arrival and the digits a publisher cycles through (the lab report's exercise 1)."""
+import math
 import statistics
 
 from course_checks.verdict import Verdict
 
 
 def rate_of(entries):
-    """Messages per second over (arrival time, message) entries, first to last."""
-    times = [arrival for arrival, _ in entries]
-    return (len(times) - 1) / (times[-1] - times[0])
+    """Messages per second over (arrival time, message) entries (at least two): one over the slope
+    of the least-squares line through the arrival times against the messages' order. Counted from
+    first to last instead, a first or last time one clock step late moves the rate by a step in the
+    whole span (each 4 ms step 0.1 Hz over 100 messages at 50 Hz); fitted, by about 6 / n of that
+    over n messages (0.006 Hz). math.inf when the times do not advance (all the messages at one instant)."""
+    times = [arrival - entries[0][0] for arrival, _ in entries]   # from the first: no digits lost to 1.7e9 s
+    middle_index, mean_time = (len(times) - 1) / 2, sum(times) / len(times)
+    spread = sum((index - middle_index) ** 2 for index in range(len(times)))
+    covariance = sum((index - middle_index) * (arrival - mean_time) for index, arrival in enumerate(times))
+    return spread / covariance if covariance > 0 else math.inf
 
 
 def kept_rate(times):
     """The rate a publisher keeps: one over the median interval between arrival times (at least
     two). A node on simulated time that starts before the first /clock, or runs late on a busy
-    machine, sends two or three at once while rospy.Rate catches up; those bursts move the first
-    to last count (rate_of) but not the median. 0.0 when the times do not advance."""
+    machine, sends two or three at once while rospy.Rate catches up; those bursts move rate_of
+    but not the median. 0.0 when the times do not advance."""
     intervals = [later - earlier for earlier, later in zip(times, times[1:])]
     median = statistics.median(intervals)
     return 1.0 / median if median > 0 else 0.0
@@ -27,13 +35,12 @@ class HeldClock:
     from the processor finds the clock where it left it), or until its caller gives up waiting:
     then the publisher is slower than that period and the clock no longer holds. The messages'
     stamps are the clock's time when they came: never earlier than the publisher published them,
-    and later by the time the clock ran on meanwhile. Until `settling` messages have come, and
-    then on the step before each hold, the clock creeps (its caller waits a while after the step
-    for a message sent at it), so that the messages are heard before it moves on from the step they
-    were sent at, and the rate from first to last over n messages is the publisher's within a step
-    in n - 1. Without it, messages sent while the clock ran freely before the first one came could
-    keep the stamps periods late until they came at once, and a faster publisher's messages, heard
-    as the clock reached each hold, were stamped one period apart.
+    and later by the time the clock ran on meanwhile. Until `settling` messages have come, and then
+    on the step before each hold, the clock creeps (its caller waits a while after the step for a
+    message sent at it), so that the messages are heard before it moves on from the step they were
+    sent at, and stamped at it. Without it, messages sent while the clock ran freely before the
+    first one came could keep the stamps periods late until they came at once, and a faster
+    publisher's messages, heard as the clock reached each hold, were stamped one period apart.
 
     The clock holds only for messages heard a period or more after the first one: a publisher
     started before it had a time (a first /clock heard) sends its first message at time zero, and
@@ -89,7 +96,7 @@ class HeldClock:
         self.hold_ns = None
 
 
-def creep_seconds(latencies, settled=True, least=0.002):
+def creep_seconds(latencies, settled=True, heard_any=True, least=0.002):
     """How long a creeping HeldClock's caller waits after a step for a message sent at it (wall
     seconds): three times the longest of `latencies` (how long the last messages took from a step
     to their listener), at least `least`, at most 10 ms once the clock has settled and 100 ms
@@ -100,8 +107,11 @@ def creep_seconds(latencies, settled=True, least=0.002):
     begin and caught up among them, the stamps shorten the measurement by as much (80 ms of
     hearing while settling with 10 ms creeps, then messages heard at once: 50.7 Hz for 50).
     Settled, the clock only creeps on the step before each hold, where 10 ms is enough for a
-    faster publisher's message to be stamped at its step."""
-    most = 0.01 if settled else 0.1
+    faster publisher's message to be stamped at its step. Before the first message (not
+    `heard_any`), 10 ms: a publisher may sleep on the clock before it publishes (for its subscribers
+    to connect, say), and at 100 ms a step one simulated second took 25 s of wall time, longer than
+    the grader waits for a first message; the messages left out make up for a first one heard late."""
+    most = 0.01 if settled or not heard_any else 0.1
     if not latencies:
         return most
     return min(most, max(least, 3 * max(latencies)))
