@@ -117,6 +117,20 @@ def creep_seconds(latencies, settled=True, heard_any=True, least=0.002):
     return min(most, max(least, 3 * max(latencies)))
 
 
+def publisher_verdict(entries, skipped, count, rate, tolerance, id_number):
+    """Exercise 1's publisher over the (stamp, digit) entries heard: the digits are the ID's in
+    order, and the rate over entries[skipped:count] (rate_of: at least two) is `rate` Hz within
+    `tolerance`."""
+    measured_entries = entries[skipped:count]
+    measured = rate_of(measured_entries)
+    seen = ('%.2f Hz' % measured if math.isfinite(measured) else   # a loop without a sleep, say
+            '%d messages at one instant' % len(measured_entries))
+    in_order = cycles_through([digit for _, digit in entries], id_number)
+    return Verdict(abs(measured - rate) <= tolerance and in_order.passed,
+                   'expected the digits of %s, in order, at %g Hz ± %g; seen %s%s' % (
+                       id_number, rate, tolerance, seen, '' if in_order.passed else '; ' + in_order.reason))
+
+
 def cycles_through(digits, id_number):
     """Whether the digits are the ID's, in order, starting anywhere and wrapping round."""
     expected = [int(digit) for digit in id_number]

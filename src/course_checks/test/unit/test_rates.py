@@ -3,7 +3,7 @@ import math
 
 import pytest
 
-from course_checks.rates import HeldClock, creep_seconds, kept_rate, rate_of
+from course_checks.rates import HeldClock, creep_seconds, kept_rate, publisher_verdict, rate_of
 
 
 def test_a_steady_publisher_keeps_its_rate():
@@ -26,6 +26,27 @@ def test_a_faster_publisher_is_seen_faster():
 def test_times_that_do_not_advance_give_no_rate():
     assert kept_rate([3.0, 3.0, 3.0]) == 0.0
     assert rate_of([(3.0, None)] * 12) == math.inf   # a publisher without a sleep, heard in one step
+
+
+def _digits_at(stamps, id_number='4095127'):
+    return [(stamp, int(id_number[k % len(id_number)])) for k, stamp in enumerate(stamps)]
+
+
+def test_the_publisher_verdict_gives_the_rate_and_the_digits():
+    verdict = publisher_verdict(_digits_at([0.3 + 0.02 * k for k in range(130)]), 10, 110, 50, 1.0, '4095127')
+    assert verdict.passed and verdict.reason == 'expected the digits of 4095127, in order, at 50 Hz ± 1; seen 50.00 Hz'
+    slower = publisher_verdict(_digits_at([0.1 * k for k in range(30)]), 10, 110, 50, 1.0, '4095127')
+    assert not slower.passed and slower.reason.endswith('seen 10.00 Hz')
+    shuffled = _digits_at([0.02 * k for k in range(110)])
+    shuffled[3:5] = [(shuffled[3][0], shuffled[4][1]), (shuffled[4][0], shuffled[3][1])]
+    wrong_order = publisher_verdict(shuffled, 10, 110, 50, 1.0, '4095127')
+    assert not wrong_order.passed and 'seen 50.00 Hz; digits [4, 0, 9, 1, 5, 2, 7' in wrong_order.reason
+
+
+def test_a_publisher_without_a_sleep_is_seen_at_one_instant():
+    # Its rate was a division by zero: the run of exercise1.launch broke down, as the grader's fault.
+    verdict = publisher_verdict(_digits_at([2.5] * 110), 10, 110, 50, 1.0, '4095127')
+    assert not verdict.passed and verdict.reason.endswith('seen 100 messages at one instant')
 
 
 def test_stamps_a_few_steps_late_at_first_move_the_fitted_rate_little():
