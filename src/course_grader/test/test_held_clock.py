@@ -9,8 +9,8 @@ measured messages (kept from the processor), at 50 Hz, the clock holding for it;
 with the grader (the whole machine paused) for longer than the clock holds, as the clock holds for
 its message, at 50 Hz, the clock still holding; and one whose first message is heard before it
 has a time (here a message the test hands on before the publisher starts), at 50 Hz; and one that
-sleeps a simulated second before it publishes, heard within the grader's wait for a first message
-and measured at 50 Hz."""
+sleeps 8 simulated seconds before it publishes, heard within the grader's wait for a first message
+(the clock's creeps not counted) and measured at 50 Hz."""
 import collections
 import os
 import random
@@ -85,7 +85,8 @@ class HeldClockTest(unittest.TestCase):
         left out); publisher_command: the course's publisher unless given. self.held says whether
         the clock still held at the end (it had not taken the publisher for a slower one),
         self.paused whether the machine was paused as asked, self.first_after the wall seconds from
-        the publisher's start to its first message heard, self.story the clock and the intervals
+        the publisher's start to its first message heard, self.waited_at_first those the grader
+        counts (HeldClockDriver.waited_for_first), self.story the clock and the intervals
         measured (a failure's message)."""
         randomly = random.Random(seed)
 
@@ -100,7 +101,7 @@ class HeldClockTest(unittest.TestCase):
                                      stdout=subprocess.DEVNULL, start_new_session=True)
         try:
             wait_until(lambda: len(driver.entries) > heard_before_its_clock, 60, 'the publisher\'s first message')
-            self.first_after = time.monotonic() - started
+            self.first_after, self.waited_at_first = time.monotonic() - started, driver.waited_at_first
             if machine_paused_for:
                 driver.pause_machine(publisher.pid, machine_paused_for)
             if stopped_for:
@@ -128,14 +129,13 @@ class HeldClockTest(unittest.TestCase):
 
     def test_a_50_hz_publisher_heard_late_while_the_clock_settles_is_measured_at_50_hz(self):
         # With 10 ms creeps while the clock settled, such stamps were left steps late and caught up
-        # among the measured messages: more than 50.5 Hz (CI's failure of this file, on a busy host).
-        # A first message sent before the publisher had a time, then hearings queued 80 ms apart
-        # while the clock crept as briefly as the hearing before had taken, can still leave a few
-        # steps of 4 ms: counted from first to last, 0.1 Hz each (50.20 and 50.30 Hz in CI), fitted
-        # (rates.rate_of) 0.01 Hz each.
+        # among the measured messages, counted from first to last: 51.24 Hz, beyond the rubric's
+        # tolerance. On a busy host a few steps of 4 ms can still be left (CI: 3 steps, then 8), each
+        # 0.1 Hz counted from first to last, 0.01 to 0.02 Hz fitted (rates.rate_of: 50.04 and 50.14 Hz):
+        # the same margin as the other cases, half the rubric's tolerance.
         def late_at_first(k):
             return 0.08 if k < SKIPPED + 2 else 0.0
-        self.assertAlmostEqual(self.measured(50, 5, late_at_first), 50.0, delta=0.1, msg=self.story)
+        self.assertAlmostEqual(self.measured(50, 5, late_at_first), 50.0, delta=0.5, msg=self.story)
 
     def test_a_50_hz_publisher_stopped_for_a_while_is_measured_at_50_hz(self):
         # With 1 s of patience the clock took it for a slower publisher and ran on at 5 times real
@@ -160,15 +160,19 @@ class HeldClockTest(unittest.TestCase):
         self.assertAlmostEqual(self.measured(50, 8, heard_before_its_clock=True), 50.0, delta=0.5, msg=self.story)
         self.assertTrue(self.held, 'the clock gave up holding for the publisher; ' + self.story)
 
-    def test_a_50_hz_publisher_that_sleeps_a_simulated_second_first_is_heard_in_time_at_50_hz(self):
+    def test_a_50_hz_publisher_that_sleeps_8_simulated_seconds_first_is_heard_in_time_at_50_hz(self):
         # Creeping 100 ms at each step before the first message (250 steps a simulated second), the
-        # clock took 25 s of wall time over that second, longer than the grader waits for a first
-        # message: 0 arrived, 0 points.
-        self.assertAlmostEqual(self.measured(50, 9, publisher_command=[SLEEPING_FIRST]), 50.0, delta=0.5,
-                               msg=self.story)
+        # clock took 25 s of wall time over one simulated second, longer than the grader waits for a
+        # first message: 0 arrived, 0 points. At 10 ms a step a second took 2.7 s, and 8 s 22.6 s:
+        # the creeps are the grader's, and the wait no longer counts them.
+        self.assertAlmostEqual(self.measured(50, 9, publisher_command=[SLEEPING_FIRST, '_sleep:=8']), 50.0,
+                               delta=0.5, msg=self.story)
         waits = rubrics.load('ros_exercises').limits['start_seconds']
-        self.assertLess(self.first_after, waits, 'the first message was heard %.1f s after the publisher started; '
-                        'the grader waits %g s' % (self.first_after, waits))
+        self.assertLess(self.waited_at_first, waits, 'the first message was heard %.1f s after the publisher started '
+                        '(%.1f s without the creeps); the grader waits %g s' % (
+                            self.first_after, self.waited_at_first, waits))
+        self.assertGreater(self.first_after, waits, 'the clock crept no longer than the grader waits: the case '
+                           'shows nothing (%.1f s)' % self.first_after)
 
     def test_a_52_hz_publisher_heard_late_is_measured_at_52_hz(self):
         self.assertAlmostEqual(self.measured(52, 4), 52.0, delta=0.5, msg=self.story)   # beyond the rubric's 1 Hz

@@ -96,15 +96,33 @@ class HeldClockDriver:
         self.subscriber = rospy.Subscriber(topic, message_class, self._heard, queue_size=1000)
         self.pacer = Pacer(real_time_factor, time.monotonic())
         self.stepped_at = time.monotonic()   # when the last step was published
+        self.started_at = time.monotonic()
+        self.crept_before_first = 0.0   # wall seconds the clock crept before the first message came
+        self.waited_at_first = None     # waited_for_first() when the first message came
         self.thread = threading.Thread(target=self._run, name='held-clock', daemon=True)
         self.thread.start()
 
     def now(self):
         return self.clock.now_ns / 1e9
 
+    def waited_for_first(self):
+        """Wall seconds the publisher has had for its first message: since the clock started, less
+        those it crept before that message. The creeps are the grader's own slowness (10 ms a step of
+        4 ms: 2.7 s of wall time a simulated second at a real-time factor of 5), and a publisher that
+        sleeps on the clock before it publishes would otherwise lose to them."""
+        with self.lock:
+            return time.monotonic() - self.started_at - self.crept_before_first
+
+    def wait_for_first(self, wait, seconds):
+        """Whether a first message came within `seconds` of waited_for_first(); wait(condition) is
+        the run's own wait (its deadline, its end)."""
+        return wait(lambda: self.entries or self.waited_for_first() > seconds) and bool(self.entries)
+
     def _heard(self, message):
         with self.lock:
             self.entries.append((self.clock.heard(), message))
+            if self.waited_at_first is None:
+                self.waited_at_first = time.monotonic() - self.started_at - self.crept_before_first
         self.heard_one.set()
 
     def _run(self):
@@ -129,8 +147,12 @@ class HeldClockDriver:
             self.clock_pub.publish(Clock(rospy.Time(0, now_ns)))
             self.stepped_at = time.monotonic()
             if creeping:
+                crept_from = time.monotonic()
                 self._heard_within(rates.creep_seconds(self.latencies, settled, heard_any))
                 self.pacer.hold(now_ns, time.monotonic())
+                if not heard_any:
+                    with self.lock:
+                        self.crept_before_first += time.monotonic() - crept_from
 
     def _heard_within(self, seconds):
         """Whether a message came within `seconds` of the grader's own time (waiting.wait_in_slices: a
@@ -166,7 +188,9 @@ def check_publisher_subscriber(session):
         return len(entries) >= count or bool(entries and digits.now() - entries[0][0] > window)
     outcomes = {}
     try:
-        exercise.wait(measured_enough, session.rubric.limits['start_seconds'] + window)
+        start_seconds = session.rubric.limits['start_seconds']
+        if digits.wait_for_first(exercise.wait, start_seconds):
+            exercise.wait(measured_enough, start_seconds + window)
         entries = list(digits.entries)
         if len(entries) < skipped + 2:   # a rate needs two messages after those left out
             outcomes['publisher_rate'] = Verdict(False, exercise.nothing(
