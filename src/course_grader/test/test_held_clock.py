@@ -10,7 +10,10 @@ with the grader (the whole machine paused) for longer than the clock holds, as t
 its message, at 50 Hz, the clock still holding; and one whose first message is heard before it
 has a time (here a message the test hands on before the publisher starts), at 50 Hz; and one that
 sleeps 8 simulated seconds before it publishes, heard within the grader's wait for a first message
-(the clock's creeps not counted) and measured at 50 Hz."""
+(the clock's creeps not counted) and measured at 50 Hz. None of them sends more than one message
+while the clock stands still for a second halfway (publisher_verdict's `still`), while one timed by
+the wall clock goes on: at 25 Hz it is measured on the wall clock at 25 Hz (the held clock waited
+for each of its messages, 50.00 Hz), at 50 Hz at 50 Hz."""
 import collections
 import os
 import random
@@ -31,6 +34,7 @@ from course_common.waiting import wait_until
 
 SKIPPED, MESSAGES = 10, 100
 SLEEPING_FIRST = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'publisher_sleeping_first.py')
+ON_THE_WALL_CLOCK = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'publisher_on_the_wall_clock.py')
 
 
 class LateHearingDriver(HeldClockDriver):
@@ -76,23 +80,28 @@ class HeldClockTest(unittest.TestCase):
         rospy.set_param('/use_sim_time', True)   # for the publisher, after this node read it
 
     def measured(self, rate, seed, lateness=None, stopped_for=0.0, machine_paused_for=0.0,
-                 heard_before_its_clock=False, publisher_command=('rosrun', 'ros_exercises', 'publisher')):
+                 heard_before_its_clock=False, publisher_command=('rosrun', 'ros_exercises', 'publisher'),
+                 on_the_clock=True):
         """The rate measured of the publisher at `rate`, each message heard lateness(k) seconds late
         (by default a random while, 15 ms on average, drawn from `seed`), the publisher stopped for
         `stopped_for` seconds after the 40th message, or paused with the grader for
         `machine_paused_for` seconds (LateHearingDriver.pause_machine), or its first message heard
         before it has a time (`heard_before_its_clock`: one handed on before it starts, one of those
-        left out); publisher_command: the course's publisher unless given. self.held says whether
+        left out); publisher_command: the course's publisher unless given; on_the_clock: it is timed by
+        the simulated clock, and so sends at most one message while the clock stands still (two, one
+        queued), and is not taken for one on the wall clock (asserted). self.held says whether
         the clock still held at the end (it had not taken the publisher for a slower one),
         self.paused whether the machine was paused as asked, self.first_after the wall seconds from
         the publisher's start to its first message heard, self.waited_at_first those the grader
-        counts (HeldClockDriver.waited_for_first), self.story the clock and the intervals
-        measured (a failure's message)."""
+        counts (HeldClockDriver.waited_for_first), self.verdict the grader's (publisher_verdict, at 50
+        Hz), self.still_heard how many messages came while the clock stood still, self.story the
+        clock and the intervals measured (a failure's message)."""
         randomly = random.Random(seed)
 
         def a_random_while(_):
             return randomly.expovariate(1 / 0.015)
-        driver = LateHearingDriver(lateness or a_random_while, '/ZabirovaKostyukova', Int32, 0.02, 5, SKIPPED)
+        driver = LateHearingDriver(lateness or a_random_while, '/ZabirovaKostyukova', Int32, 0.02, 5, SKIPPED,
+                                   SKIPPED + MESSAGES // 2)   # as the grader
         if heard_before_its_clock:
             driver._heard(Int32(4))
         started = time.monotonic()
@@ -109,13 +118,23 @@ class HeldClockTest(unittest.TestCase):
                 os.killpg(publisher.pid, signal.SIGSTOP)
                 time.sleep(stopped_for)   # how long the test keeps it stopped, not a wait
                 os.killpg(publisher.pid, signal.SIGCONT)
-            wait_until(lambda: len(driver.entries) >= SKIPPED + MESSAGES, 60, 'the publisher\'s messages')
+            wait_until(lambda: driver.measured(SKIPPED + MESSAGES, 1.5 * (SKIPPED + MESSAGES) / 50), 60,
+                       'the publisher\'s messages, as the grader waits for them')
+            self.assertIsNotNone(driver.still, 'the clock did not stand still')
             measured = driver.entries[SKIPPED:SKIPPED + MESSAGES]
+            self.verdict = rates.publisher_verdict([(stamp, digit.data) for stamp, digit in driver.entries],
+                                                   SKIPPED, SKIPPED + MESSAGES, 50, 1.0, '4095127', driver.still)
+            self.still_heard = len(driver.still[1])
             self.held, self.paused = not driver.clock.gave_up, driver.pauser is not None
             intervals = collections.Counter(round((later - earlier) * 1000)
                                             for (earlier, _), (later, _) in zip(measured, measured[1:]))
-            self.story = 'the clock holding at the end: %s; the machine paused: %s; intervals (ms: how many): %s' % (
-                self.held, self.paused, dict(sorted(intervals.items())))
+            self.story = ('the clock holding at the end: %s; the machine paused: %s; heard while it stood still: %d; '
+                          'intervals (ms: how many): %s' % (self.held, self.paused, self.still_heard,
+                                                             dict(sorted(intervals.items()))))
+            print('%s: %s' % (self.id(), self.story))   # kept in the test's result file
+            if on_the_clock:
+                self.assertLess(self.still_heard, rates.WALL_TIMED_MESSAGES, self.story)
+                self.assertNotIn('wall clock', self.verdict.reason)
             return rates.rate_of(measured)
         finally:
             driver.close()
@@ -176,6 +195,18 @@ class HeldClockTest(unittest.TestCase):
 
     def test_a_52_hz_publisher_heard_late_is_measured_at_52_hz(self):
         self.assertAlmostEqual(self.measured(52, 4), 52.0, delta=0.5, msg=self.story)   # beyond the rubric's 1 Hz
+
+    def test_a_25_hz_publisher_on_the_wall_clock_is_measured_on_it_at_25_hz(self):
+        # The clock held for each of its messages as for one the machine delayed: 50.00 Hz, 2 points.
+        self.measured(25, 10, publisher_command=[ON_THE_WALL_CLOCK], on_the_clock=False)
+        self.assertFalse(self.verdict.passed, self.verdict.reason)
+        self.assertRegex(self.verdict.reason, r'seen \d+ messages in 1 s while the simulated clock \(/clock\) stood '
+                         r'still: the publisher is timed by the wall clock, .* on the wall clock: 2[45]\.\d\d Hz$')
+
+    def test_a_50_hz_publisher_on_the_wall_clock_is_measured_on_it_at_50_hz(self):
+        self.measured(50, 11, publisher_command=[ON_THE_WALL_CLOCK], on_the_clock=False)
+        self.assertTrue(self.verdict.passed, self.verdict.reason)
+        self.assertIn('on the wall clock', self.verdict.reason)
 
 
 if __name__ == '__main__':

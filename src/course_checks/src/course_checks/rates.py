@@ -48,10 +48,12 @@ class HeldClock:
     whole period. Heard before it heard that time, such a message would put the hold before the
     publisher's next message, and the clock would wait for it until its caller gave up."""
 
-    def __init__(self, period_ns, step_ns, settling=0):
+    def __init__(self, period_ns, step_ns, settling=0, stand_still_after=None):
         self.period_ns = period_ns
         self.step_ns = step_ns
         self.settling = settling   # messages to hear before the clock creeps only before each hold
+        self.stand_still_after = stand_still_after   # messages to hear before it stands still once
+        self.stood_still = False
         self.heard_count = 0
         self.now_ns = 0
         self.hold_ns = None   # where the clock waits for the next message; None: it does not
@@ -63,6 +65,18 @@ class HeldClock:
         until `settling` messages have come, and on the step before the hold."""
         before_hold = self.hold_ns is not None and self.now_ns + self.step_ns >= self.hold_ns
         return not self.gave_up and (not self.settled() or before_hold)
+
+    def standing_still(self):
+        """Whether the caller should now keep the clock where it is for a while (once, on the step
+        before a hold, after `stand_still_after` messages): a publisher timed by the clock cannot
+        send its next message before the clock reaches the hold, at most one already on its way; one
+        timed by the wall clock goes on sending (publisher_verdict's `still`). A hold alone cannot
+        tell them apart: it waits for a slower publisher's message as for one the machine delays."""
+        due = (not self.stood_still and not self.gave_up and self.stand_still_after is not None
+               and self.heard_count >= self.stand_still_after and self.hold_ns is not None
+               and self.now_ns < self.hold_ns <= self.now_ns + self.step_ns)
+        self.stood_still = self.stood_still or due
+        return due
 
     def settled(self):
         """Whether `settling` messages have come (then the clock creeps only before each hold)."""
@@ -117,18 +131,37 @@ def creep_seconds(latencies, settled=True, heard_any=True, least=0.002):
     return min(most, max(least, 3 * max(latencies)))
 
 
-def publisher_verdict(entries, skipped, count, rate, tolerance, id_number):
+# Messages heard while the clock stood still (HeldClock.standing_still) that show a publisher timed by
+# the wall clock: one timed by the clock sends none, but one already on its way, and a grader that
+# heard messages late may have one more queued.
+WALL_TIMED_MESSAGES = 3
+
+
+def publisher_verdict(entries, skipped, count, rate, tolerance, id_number, still=None, complete=True):
     """Exercise 1's publisher over the (stamp, digit) entries heard: the digits are the ID's in
     order, and the rate over entries[skipped:count] (rate_of: at least two) is `rate` Hz within
-    `tolerance`."""
+    `tolerance`. still: (seconds, [wall time of each message heard]) while the clock stood still:
+    from WALL_TIMED_MESSAGES on, the publisher is timed by the wall clock, and its rate is taken
+    from those wall times. complete: False when the grader stopped waiting before `count` messages
+    came (and before its clock's window was over): fewer messages are not a rate."""
+    in_order = cycles_through([digit for _, digit in entries], id_number)
+    digits_wrong = '' if in_order.passed else '; ' + in_order.reason
+    expected = 'expected the digits of %s, in order, at %g Hz ± %g; seen ' % (id_number, rate, tolerance)
+    if still and len(still[1]) >= WALL_TIMED_MESSAGES:
+        seconds, arrivals = still
+        measured = rate_of([(arrival, None) for arrival in arrivals])
+        return Verdict(abs(measured - rate) <= tolerance and in_order.passed, expected + (
+            '%d messages in %g s while the simulated clock (/clock) stood still: the publisher is timed by the '
+            'wall clock, not by ROS time (ros::Rate, rospy.Rate), so its rate was taken on the wall clock: '
+            '%.2f Hz' % (len(arrivals), seconds, measured)) + digits_wrong)
+    if not complete and len(entries) < count:
+        return Verdict(False, expected + 'only %d of the %d messages it is measured over, before the run ended or the grader '
+                       'stopped waiting' % (len(entries), count) + digits_wrong)
     measured_entries = entries[skipped:count]
     measured = rate_of(measured_entries)
     seen = ('%.2f Hz' % measured if math.isfinite(measured) else   # a loop without a sleep, say
             '%d messages at one instant' % len(measured_entries))
-    in_order = cycles_through([digit for _, digit in entries], id_number)
-    return Verdict(abs(measured - rate) <= tolerance and in_order.passed,
-                   'expected the digits of %s, in order, at %g Hz ± %g; seen %s%s' % (
-                       id_number, rate, tolerance, seen, '' if in_order.passed else '; ' + in_order.reason))
+    return Verdict(abs(measured - rate) <= tolerance and in_order.passed, expected + seen + digits_wrong)
 
 
 def cycles_through(digits, id_number):

@@ -76,6 +76,51 @@ def _run(clock, publishes_at, steps, runs_every=1):
     return stamps
 
 
+def test_a_publisher_that_went_on_while_the_clock_stood_still_is_measured_on_the_wall_clock():
+    # Stamped on the held clock, a publisher timed by the wall clock at 25 Hz was 50.00 Hz: the clock
+    # held for each of its messages as for a message the machine delayed.
+    on_the_clock = _digits_at([0.3 + 0.02 * k for k in range(130)])
+    at_25_hz = publisher_verdict(on_the_clock, 10, 110, 50, 1.0, '4095127', still=(1.0, [7.0 + 0.04 * k for k in range(25)]))
+    assert not at_25_hz.passed
+    assert at_25_hz.reason.endswith('seen 25 messages in 1 s while the simulated clock (/clock) stood still: the '
+                                    'publisher is timed by the wall clock, not by ROS time (ros::Rate, rospy.Rate), '
+                                    'so its rate was taken on the wall clock: 25.00 Hz')
+    at_50_hz = publisher_verdict(on_the_clock, 10, 110, 50, 1.0, '4095127', still=(1.0, [7.0 + 0.02 * k for k in range(50)]))
+    assert at_50_hz.passed and at_50_hz.reason.endswith('on the wall clock: 50.00 Hz')
+    # One timed by the clock: none while it stood still, or one already on its way, or one more queued.
+    for heard in ([], [7.0], [7.0, 7.001]):
+        verdict = publisher_verdict(on_the_clock, 10, 110, 50, 1.0, '4095127', still=(1.0, heard))
+        assert verdict.passed and verdict.reason.endswith('seen 50.00 Hz')
+
+
+def test_fewer_messages_than_measured_when_the_grader_stopped_waiting_are_not_a_rate():
+    # A publisher timed by the wall clock at 1 Hz: the clock held for each message, 20 ms apart on it.
+    verdict = publisher_verdict(_digits_at([0.3 + 0.02 * k for k in range(30)]), 10, 110, 50, 1.0, '4095127',
+                                complete=False)
+    assert not verdict.passed and verdict.reason.endswith(
+        'seen only 30 of the 110 messages it is measured over, before the run ended or the grader stopped waiting')
+    # A slower publisher on the clock: the clock's window was over (complete), and it is measured.
+    slower = publisher_verdict(_digits_at([0.1 * k for k in range(30)]), 10, 110, 50, 1.0, '4095127')
+    assert slower.reason.endswith('seen 10.00 Hz')
+
+
+def test_the_clock_stands_still_once_on_the_step_before_a_hold_after_the_messages_asked():
+    clock = HeldClock(20000000, 4000000, stand_still_after=2)
+    clock.next_ns()
+    clock.heard()   # at 4 ms: the clock holds from a period after it
+    still_at = []
+    for _ in range(30):
+        now = clock.next_ns()
+        if now in (24000000, 44000000):   # the second message, then one at the hold
+            clock.heard()
+        if clock.standing_still():
+            still_at.append(clock.now_ns)
+    assert clock.now_ns == 64000000 and clock.holding()
+    assert still_at == [40000000]   # the step before the hold at 44 ms, and not before the one at 64 ms
+    held_still = HeldClock(20000000, 4000000)
+    assert not any(held_still.standing_still() for _ in range(3))   # not asked
+
+
 def test_the_held_clock_stamps_a_publisher_at_its_rate():
     # From the second message: the clock holds from a period after the first.
     stamps = _run(HeldClock(20000000, 1000000), [k * 20000000 + 3000000 for k in range(20)], 1000)

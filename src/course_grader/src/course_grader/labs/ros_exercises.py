@@ -79,18 +79,22 @@ class Exercise(TurtlesimLaunch):
 class HeldClockDriver:
     """/clock for exercise 1, published by the grader: rates.HeldClock's time at real_time_factor,
     holding at most PATIENCE wall seconds for each message due (then on until the next), creeping
-    over the first `settling` messages and before each hold, and each message on `topic` kept with
-    its stamp on that clock."""
+    over the first `settling` messages and before each hold, standing still once for STILL_SECONDS
+    after `stand_still_after` messages, and each message on `topic` kept with its stamp on that
+    clock and the wall time it was heard at."""
     STEP_NS = 4000000   # 250 per simulated second, as turtlesim's /clock
     PATIENCE = 3.0      # wall seconds a message due may take: a publisher kept that long from the processor
     LATENCIES = 10      # messages whose way from a step to here decides how long the clock creeps (rates.creep_seconds)
+    STILL_SECONDS = 1.0   # wall seconds the clock stands still once (rates.HeldClock.standing_still)
 
-    def __init__(self, topic, message_class, period, real_time_factor, settling):
-        self.clock = rates.HeldClock(int(round(period * 1e9)), self.STEP_NS, settling)
+    def __init__(self, topic, message_class, period, real_time_factor, settling, stand_still_after=None):
+        self.clock = rates.HeldClock(int(round(period * 1e9)), self.STEP_NS, settling, stand_still_after)
         self.lock = threading.Lock()
         self.heard_one = threading.Event()
         self.stopped = threading.Event()
         self.entries = []   # (stamp on the clock, message)
+        self.heard_at = []   # the wall time (time.monotonic()) each of entries was heard at
+        self.still = None   # (seconds, [wall time of each message heard]) while the clock stood still
         self.latencies = collections.deque(maxlen=self.LATENCIES)   # wall seconds from a step to its message heard
         self.clock_pub = rospy.Publisher('/clock', Clock, queue_size=10)
         self.subscriber = rospy.Subscriber(topic, message_class, self._heard, queue_size=1000)
@@ -121,6 +125,7 @@ class HeldClockDriver:
     def _heard(self, message):
         with self.lock:
             self.entries.append((self.clock.heard(), message))
+            self.heard_at.append(time.monotonic())
             if self.waited_at_first is None:
                 self.waited_at_first = time.monotonic() - self.started_at - self.crept_before_first
         self.heard_one.set()
@@ -133,6 +138,7 @@ class HeldClockDriver:
             with self.lock:
                 now_ns = self.clock.next_ns()
                 holding, creeping, settled = self.clock.holding(), self.clock.creeping(), self.clock.settled()
+                standing_still = self.clock.standing_still()
                 heard_any = self.clock.heard_count > 0
             if now_ns is None:
                 if holding and not self._heard_within(self.PATIENCE):
@@ -153,6 +159,27 @@ class HeldClockDriver:
                 if not heard_any:
                     with self.lock:
                         self.crept_before_first += time.monotonic() - crept_from
+            if standing_still:
+                self._stand_still()
+
+    def measured(self, count, window):
+        """Whether there is enough to judge: `count` messages came, or `window` simulated seconds
+        passed since the first (a slower publisher is measured over what came); not while the clock
+        stands still (rates.HeldClock.standing_still), when a publisher timed by the wall clock may
+        send many messages, judged once it is over."""
+        entries = self.entries
+        enough = len(entries) >= count or bool(entries and self.now() - entries[0][0] > window)
+        return enough and not (self.clock.stood_still and self.still is None)
+
+    def _stand_still(self):
+        """Keeps the clock where it is for STILL_SECONDS of the grader's own time (wait_in_slices),
+        noting the wall times of the messages heard meanwhile (`still`)."""
+        with self.lock:
+            first = len(self.entries)
+        wait_in_slices(self.stopped.wait, self.STILL_SECONDS)
+        with self.lock:
+            self.still = (self.STILL_SECONDS, self.heard_at[first:])
+        self.pacer.hold(self.clock.now_ns, time.monotonic())
 
     def _heard_within(self, seconds):
         """Whether a message came within `seconds` of the grader's own time (waiting.wait_in_slices: a
@@ -179,25 +206,27 @@ def check_publisher_subscriber(session):
     # The publisher's rate is judged on a simulated clock the grader publishes, which waits for each
     # message due (HeldClock) and creeps over the messages left out and before each hold: a busy
     # machine delays the publisher, never its rate.
-    digits = HeldClockDriver('/ZabirovaKostyukova', Int32, 1.0 / rate, rate_c['real_time_factor'], skipped)
+    # Halfway through the measured messages the clock stands still for a second: a publisher timed by
+    # the wall clock goes on sending, and is measured on it (a hold waits for its slower messages as
+    # for ones the machine delays: at 25 Hz it was measured at 50.00 Hz).
+    digits = HeldClockDriver('/ZabirovaKostyukova', Int32, 1.0 / rate, rate_c['real_time_factor'], skipped,
+                             stand_still_after=skipped + int(rate_c['messages']) // 2)
     exercise = Exercise(session, rate_c, 'exercise1.log', 'rate:=%g' % rate, 'id:=' + id_number)
     window = 1.5 * count / rate   # simulated seconds from the first digit: a slower publisher is measured over what came
 
-    def measured_enough():
-        entries = digits.entries
-        return len(entries) >= count or bool(entries and digits.now() - entries[0][0] > window)
     outcomes = {}
     try:
         start_seconds = session.rubric.limits['start_seconds']
-        if digits.wait_for_first(exercise.wait, start_seconds):
-            exercise.wait(measured_enough, start_seconds + window)
+        complete = (digits.wait_for_first(exercise.wait, start_seconds)
+                    and exercise.wait(lambda: digits.measured(count, window), start_seconds + window))
         entries = list(digits.entries)
         if len(entries) < skipped + 2:   # a rate needs two messages after those left out
             outcomes['publisher_rate'] = Verdict(False, exercise.nothing(
                 'publish the digits of %s on /ZabirovaKostyukova; %d arrived' % (id_number, len(entries))))
         else:
             outcomes['publisher_rate'] = rates.publisher_verdict(
-                [(stamp, digit.data) for stamp, digit in entries], skipped, count, rate, rate_c['tolerance'], id_number)
+                [(stamp, digit.data) for stamp, digit in entries], skipped, count, rate, rate_c['tolerance'], id_number,
+                digits.still, complete)
         heard_pattern = r'I heard: \[(\d+)\]'
         wanted = session.rubric.criterion('subscriber_prints')['repeats'] * len(id_number)
         exercise.wait(lambda: len(exercise.printed(heard_pattern)) >= wanted, 10)
