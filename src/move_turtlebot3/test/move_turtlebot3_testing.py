@@ -36,6 +36,11 @@ class Watch(RobotWatch):
     def wait_until_running(self, timeout=60):
         wait_until(self.running, timeout, what='odom, scan and collisions from fake_tb3')
 
+    def wait_for_command(self, timeout=60):
+        """The node's first command heard: on a busy machine its start (python3, rospy) can take
+        longer than a window of simulated time measured from the simulator's start (2 s at 10x)."""
+        wait_until(lambda: self.copy('commands'), timeout, what='a command on /cmd_vel')
+
     def wait_sim_seconds(self, seconds, timeout):
         end = self.now() + seconds
         wait_until(lambda: self.now() >= end, timeout, what='%.0f simulated seconds' % seconds)
