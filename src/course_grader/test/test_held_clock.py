@@ -17,6 +17,7 @@ for each of its messages, 50.00 Hz), at 50 Hz at 50 Hz."""
 import collections
 import os
 import random
+import re
 import signal
 import subprocess
 import time
@@ -204,9 +205,12 @@ class HeldClockTest(unittest.TestCase):
                          r'still: the publisher is timed by the wall clock, .* on the wall clock: 2[45]\.\d\d Hz$')
 
     def test_a_50_hz_publisher_on_the_wall_clock_is_measured_on_it_at_50_hz(self):
+        # Measured on the wall clock, as the grader hears it: a busy machine moves it, as it would any
+        # wall-clock measurement (the reason for the held clock); here within 3 Hz.
         self.measured(50, 11, publisher_command=[ON_THE_WALL_CLOCK], on_the_clock=False)
-        self.assertTrue(self.verdict.passed, self.verdict.reason)
-        self.assertIn('on the wall clock', self.verdict.reason)
+        wall_rate = re.search(r'on the wall clock: (\d+\.\d+) Hz$', self.verdict.reason)
+        self.assertIsNotNone(wall_rate, self.verdict.reason)
+        self.assertAlmostEqual(float(wall_rate.group(1)), 50.0, delta=3.0, msg=self.verdict.reason)
 
 
 if __name__ == '__main__':

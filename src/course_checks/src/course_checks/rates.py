@@ -164,6 +164,24 @@ def publisher_verdict(entries, skipped, count, rate, tolerance, id_number, still
     return Verdict(abs(measured - rate) <= tolerance and in_order.passed, expected + seen + digits_wrong)
 
 
+def subscriber_verdict(heard, wanted, id_number, own_number):
+    """Exercise 1's subscriber over the numbers it printed (`I heard: [n]`, in order): `wanted` of the
+    ID's digits, in order, and `own_number`, which the grader published on the topic itself. The
+    digits alone could be printed without hearing anything (the ID is known); a number drawn by the
+    grader at each run can only be heard."""
+    digits = [number for number in heard if number != own_number]
+    if len(digits) < wanted:
+        return Verdict(False, 'expected the subscriber to print `I heard: [d]` for each digit of %s; seen %d such '
+                       'lines' % (id_number, len(digits)))
+    if own_number not in heard:
+        return Verdict(False, 'expected the subscriber to print each number it hears; the grader published %d on '
+                       'ZabirovaKostyukova itself, and no line `I heard: [%d]` came: the lines are not what it '
+                       'hears' % (own_number, own_number))
+    in_order = cycles_through(digits, id_number)
+    return Verdict(in_order.passed, 'expected `I heard: [d]` for each digit of %s, in order, and for the grader\'s '
+                   'own number; seen %s' % (id_number, 'them' if in_order.passed else in_order.reason))
+
+
 def cycles_through(digits, id_number):
     """Whether the digits are the ID's, in order, starting anywhere and wrapping round."""
     expected = [int(digit) for digit in id_number]

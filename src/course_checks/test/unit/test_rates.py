@@ -3,7 +3,7 @@ import math
 
 import pytest
 
-from course_checks.rates import HeldClock, creep_seconds, kept_rate, publisher_verdict, rate_of
+from course_checks.rates import HeldClock, creep_seconds, kept_rate, publisher_verdict, rate_of, subscriber_verdict
 
 
 def test_a_steady_publisher_keeps_its_rate():
@@ -74,6 +74,23 @@ def _run(clock, publishes_at, steps, runs_every=1):
         elif clock.next_ns() is None and not (due and clock.now_ns >= due[0]):
             clock.give_up()
     return stamps
+
+
+def test_the_subscriber_prints_the_digits_in_order_and_the_number_the_grader_published():
+    digits = [int(d) for d in '4095127' * 3]
+    heard = digits[:9] + [73015, 73015] + digits[9:]   # heard twice: the grader sends it until it is printed
+    verdict = subscriber_verdict(heard, 21, '4095127', 73015)
+    assert verdict.passed and verdict.reason == ("expected `I heard: [d]` for each digit of 4095127, in order, "
+                                                 "and for the grader's own number; seen them")
+    # The ID's digits printed in a loop, nothing subscribed: they are known beforehand, the number is not.
+    printed_only = subscriber_verdict(digits * 2, 21, '4095127', 73015)
+    assert not printed_only.passed and printed_only.reason == (
+        'expected the subscriber to print each number it hears; the grader published 73015 on ZabirovaKostyukova '
+        'itself, and no line `I heard: [73015]` came: the lines are not what it hears')
+    too_few = subscriber_verdict(digits[:5] + [73015], 21, '4095127', 73015)
+    assert not too_few.passed and too_few.reason.endswith('seen 5 such lines')
+    shuffled = subscriber_verdict(digits[1:2] + digits[:1] + digits[2:] + [73015], 21, '4095127', 73015)
+    assert not shuffled.passed and 'are not the ID 4095127 over and over' in shuffled.reason
 
 
 def test_a_publisher_that_went_on_while_the_clock_stood_still_is_measured_on_the_wall_clock():
