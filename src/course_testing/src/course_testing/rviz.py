@@ -12,13 +12,26 @@ import signal
 
 from course_common.waiting import wait_until
 
-from course_testing.screen import red_pixels
+from course_testing.screen import red_pixels, uncovered_pixels
 
 # roslaunch's line when a node it started ends (a REQUIRED one ends the launch): its exit code, then
 # its command line, which names the node (__name:=rviz).
 NODE_DIED = re.compile(r'process has died \[pid \d+, exit code (-?\d+), cmd ([^\n]*)')
 
 STARTS = ('first', 'second')
+
+# rviz's window fills the screen (its config's Window Geometry is the screen's size). CI's bookworm
+# run once took the tour's picture with 36 % of the screen black, the laser points already red: a
+# screenshot taken before the window had its size, or mid-frame. Such a screenshot is taken again.
+UNCOVERED_AT_MOST = 0.01  # of the screen
+
+
+def what_the_screen_shows(path):
+    """(laser-red pixels, uncovered pixels, a sentence saying both) of a screenshot."""
+    red = red_pixels(path)
+    uncovered, box = uncovered_pixels(path)
+    where = ' from (%d, %d) to (%d, %d)' % box if box else ''
+    return red, uncovered, '%d laser-red pixels, %d uncovered (black)%s' % (red, uncovered, where)
 
 
 def killed_by(launch_output, node):
@@ -35,7 +48,7 @@ def killed_by(launch_output, node):
 
 def rviz_until_drawn(start, stop, screen, screenshot, red_at_least, timeout=90.0):
     """Starts rviz's launch with `start()` and waits until a screenshot of `screen` (written to
-    `screenshot`) has more than `red_at_least` laser-red pixels.
+    `screenshot`) has more than `red_at_least` laser-red pixels and rviz's window covers the screen.
 
     `start()` returns the running launch, with `exited()` and `output()` (what it printed so far);
     `stop(launch)` stops it. Returns (launch, notes): the launch that drew, still running, and a
@@ -43,16 +56,23 @@ def rviz_until_drawn(start, stop, screen, screenshot, red_at_least, timeout=90.0
     launch printed, when rviz ends by itself, is killed at both starts, or does not draw within
     `timeout` seconds of a start; none of its launches is then left running."""
     notes = []
+    uncovered_at_most = UNCOVERED_AT_MOST * screen.width * screen.height
+
+    def drawn():
+        red, uncovered, _ = what_the_screen_shows(screen.screenshot(screenshot))
+        return red > red_at_least and uncovered <= uncovered_at_most
+
     for start_name in STARTS:
         launch = start()
         try:
             # Twice a second: screenshots back to back would starve rviz's software rendering.
-            wait_until(lambda: launch.exited() or red_pixels(screen.screenshot(screenshot)) > red_at_least,
-                       timeout, 'rviz to draw the laser points (%s start)' % start_name, poll=0.5)
+            wait_until(lambda: launch.exited() or drawn(), timeout,
+                       'rviz to draw the laser points and fill the screen (%s start)' % start_name, poll=0.5)
         except AssertionError as late:
             output = launch.output()
             stop(launch)
-            raise AssertionError('%s; its launch said:\n%s' % (late, output[-1500:])) from None
+            raise AssertionError('%s; the last screenshot: %s; its launch said:\n%s' % (
+                late, what_the_screen_shows(screenshot)[2], output[-1500:])) from None
         if not launch.exited():
             return launch, notes
         output = launch.output()

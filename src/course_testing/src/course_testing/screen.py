@@ -15,6 +15,18 @@ def red_pixels(path):
     return int(numpy.sum((rgb[:, :, 0] > 200) & (rgb[:, :, 1] < 60) & (rgb[:, :, 2] < 60)))
 
 
+def uncovered_pixels(path):
+    """The pixels of a screenshot that no window covers (Xvfb's root window is pure black): how
+    many, and their bounding box (left, top, right, bottom), None when there are none."""
+    with Image.open(path) as image:
+        rgb = numpy.asarray(image.convert('RGB'))
+    black = numpy.all(rgb == 0, axis=2)
+    rows, columns = numpy.nonzero(black)
+    if not len(rows):
+        return 0, None
+    return int(black.sum()), (int(columns.min()), int(rows.min()), int(columns.max()), int(rows.max()))
+
+
 def can_make_screens():
     """True when Xvfb and ImageMagick's `import` are installed (tools/debian-packages.txt lists them)."""
     return bool(shutil.which('Xvfb') and shutil.which('import'))
@@ -24,6 +36,7 @@ class VirtualScreen:
     """Context manager: an Xvfb on a display number it picks free (-displayfd), stopped at exit."""
 
     def __init__(self, width=1280, height=1024):
+        self.width, self.height = width, height
         self.size = '%dx%dx24' % (width, height)
         self.display = None
         self._xvfb = None

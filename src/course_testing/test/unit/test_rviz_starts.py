@@ -2,6 +2,7 @@
 (test/fake_rviz) that is killed by a signal, exits, or draws, as its plan says. (What the tour's
 lab does with two crashes in a row is tested with stand-in launches, in course_tour's units.)"""
 import os
+import re
 
 import pytest
 
@@ -81,7 +82,7 @@ def until_drawn(tmp_path, master, plan, timeout=60.0):
 
 def test_rviz_killed_by_a_signal_is_started_once_more_and_that_is_said(tmp_path, master):
     launches, notes, red = until_drawn(tmp_path, master, ['segv', 'draw'])
-    assert len(launches) == 2 and red >= 400 * 300 * 0.9
+    assert len(launches) == 2 and red >= 640 * 480 * 0.9
     assert notes == ['rviz was killed by SIGSEGV at its first start, before it drew: started again']
     assert all(launch.exited() for launch in launches)  # the one that drew was stopped
 
@@ -97,8 +98,18 @@ def test_rviz_that_never_draws_fails_at_the_timeout_and_is_stopped(tmp_path, mas
     launches, notes, failure = until_drawn(tmp_path, master, ['blank', 'draw'], timeout=4.0)
     assert len(launches) == 1
     # What roslaunch printed follows (under load it may not have printed anything in 4 s).
-    assert failure.startswith('timed out after 4.0 s waiting for rviz to draw the laser points (first start); '
-                              'its launch said:\n')
+    assert failure.startswith('timed out after 4.0 s waiting for rviz to draw the laser points and fill the '
+                              'screen (first start); the last screenshot: 0 laser-red pixels, ')
+    assert '; its launch said:\n' in failure
+    wait_until(launches[0].exited, 5, 'the launch to be stopped')
+
+
+def test_rviz_whose_window_leaves_part_of_the_screen_black_has_not_drawn(tmp_path, master):
+    launches, notes, failure = until_drawn(tmp_path, master, ['small', 'draw'], timeout=10.0)
+    assert len(launches) == 1
+    # The red 400 x 300 window at the top left, the rest of the 640 x 480 screen black.
+    assert re.search(r'the last screenshot: 1\d{5} laser-red pixels, 1\d{5} uncovered \(black\) from \(0, 0\) '
+                     r'to \(639, 479\)', failure), failure
     wait_until(launches[0].exited, 5, 'the launch to be stopped')
 
 
@@ -119,6 +130,8 @@ def test_the_timeout_quotes_what_the_launch_printed(tmp_path):
         with pytest.raises(AssertionError) as failure:
             rviz_until_drawn(lambda: launch, lambda stopped: setattr(stopped, 'stopped', True), screen,
                              str(tmp_path / 'screen.png'), red_at_least=10, timeout=1.0)
-    assert str(failure.value) == ('timed out after 1.0 s waiting for rviz to draw the laser points (first start); '
-                                  'its launch said:\nprocess[rviz-1]: started with pid [4242]\n')
+    assert str(failure.value) == ('timed out after 1.0 s waiting for rviz to draw the laser points and fill the '
+                                  'screen (first start); the last screenshot: 0 laser-red pixels, 3072 uncovered '
+                                  '(black) from (0, 0) to (63, 47); its launch said:\n'
+                                  'process[rviz-1]: started with pid [4242]\n')
     assert launch.stopped
