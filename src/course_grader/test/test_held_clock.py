@@ -34,8 +34,7 @@ from course_common.processes import stop_process_group
 from course_common.waiting import wait_until
 
 SKIPPED, MESSAGES = 10, 100
-SLEEPING_FIRST = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'publisher_sleeping_first.py')
-ON_THE_WALL_CLOCK = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'publisher_on_the_wall_clock.py')
+EXERCISE1_PUBLISHER = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'exercise1_publisher.py')
 
 
 class LateHearingDriver(HeldClockDriver):
@@ -185,7 +184,7 @@ class HeldClockTest(unittest.TestCase):
         # clock took 25 s of wall time over one simulated second, longer than the grader waits for a
         # first message: 0 arrived, 0 points. At 10 ms a step a second took 2.7 s, and 8 s 22.6 s:
         # the creeps are the grader's, and the wait no longer counts them.
-        self.assertAlmostEqual(self.measured(50, 9, publisher_command=[SLEEPING_FIRST, '_sleep:=8']), 50.0,
+        self.assertAlmostEqual(self.measured(50, 9, publisher_command=[EXERCISE1_PUBLISHER, '_sleep:=8']), 50.0,
                                delta=0.5, msg=self.story)
         waits = rubrics.load('ros_exercises').limits['start_seconds']
         self.assertLess(self.waited_at_first, waits, 'the first message was heard %.1f s after the publisher started '
@@ -199,7 +198,7 @@ class HeldClockTest(unittest.TestCase):
 
     def test_a_25_hz_publisher_on_the_wall_clock_is_measured_on_it_at_25_hz(self):
         # The clock held for each of its messages as for one the machine delayed: 50.00 Hz, 2 points.
-        self.measured(25, 10, publisher_command=[ON_THE_WALL_CLOCK], on_the_clock=False)
+        self.measured(25, 10, publisher_command=[EXERCISE1_PUBLISHER, '_clock:=wall'], on_the_clock=False)
         self.assertFalse(self.verdict.passed, self.verdict.reason)
         self.assertRegex(self.verdict.reason, r'seen \d+ messages in 1 s while the simulated clock \(/clock\) stood '
                          r'still: the publisher is timed by the wall clock, .* on the wall clock: 2[45]\.\d\d Hz$')
@@ -207,7 +206,7 @@ class HeldClockTest(unittest.TestCase):
     def test_a_50_hz_publisher_on_the_wall_clock_is_measured_on_it_at_50_hz(self):
         # Measured on the wall clock, as the grader hears it: a busy machine moves it, as it would any
         # wall-clock measurement (the reason for the held clock); here within 3 Hz.
-        self.measured(50, 11, publisher_command=[ON_THE_WALL_CLOCK], on_the_clock=False)
+        self.measured(50, 11, publisher_command=[EXERCISE1_PUBLISHER, '_clock:=wall'], on_the_clock=False)
         wall_rate = re.search(r'on the wall clock: (\d+\.\d+) Hz$', self.verdict.reason)
         self.assertIsNotNone(wall_rate, self.verdict.reason)
         self.assertAlmostEqual(float(wall_rate.group(1)), 50.0, delta=3.0, msg=self.verdict.reason)
