@@ -62,4 +62,4 @@ export COURSE_GRADER_IMAGE
 echo "grade-test: $image made in $((SECONDS - started)) s, $(($(docker image inspect -f '{{.Size}}' "$image") / 1000000)) MB"
 [ "$platforms" = no ] || check_grading_image
 # Not exec: the EXIT trap of tools/docker.sh must still stop a dockerd it started.
-/usr/bin/python3 -m pytest -v -p no:cacheprovider "$ROOT/src/course_grader/test/$tests" "$@"
+/usr/bin/python3 -m pytest -v --durations=0 -p no:cacheprovider "$ROOT/src/course_grader/test/$tests" "$@"

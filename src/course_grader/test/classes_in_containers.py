@@ -10,7 +10,6 @@ import json
 import os
 import subprocess
 import tarfile
-import threading
 import zipfile
 
 import pytest
@@ -125,34 +124,25 @@ def test_example_class_in_containers(lab, tmp_path):
 
 @pytest.mark.parametrize('lab', labs())
 def test_the_same_grade_every_time(lab, tmp_path):
-    """The class graded twice more, both gradings at once (one submission at a time each: the load
-    of the first grading's two at a time): every student gets the same points for every criterion,
-    for the same reasons, all three times. Not `hostile`, the fork bomb and flood, whose grading is
-    the sandbox's limits running out: graded twice at once, my_turtle's took 11 minutes (its wall
-    limit) for the same 2 / 9; the first grading pins its score and sentences."""
+    """The class graded once more, two submissions at a time as the first grading (each beside
+    another: the load a teacher's grading has): every student gets the same points for every
+    criterion, for the same reasons, both times. Not `hostile`, the fork bomb and flood, whose
+    grading is the sandbox's limits running out (graded beside a second grading of the class, my_turtle's
+    took 11 minutes, its wall limit, for the same 2 / 9); the first grading pins its score and sentences."""
     students = sorted(s for s in expected(lab) if s != 'hostile')
     folders = make_class(lab, str(tmp_path / 'class'))
     if lab not in FIRST_GRADINGS:   # run alone (-k): the first grading here
         out = str(tmp_path / 'first')
-        assert grade(lab, [folders[s] for s in students], out).returncode == 0
+        assert grade(lab, [folders[s] for s in students], out, '--jobs', '2').returncode == 0
         FIRST_GRADINGS[lab] = verdicts(read_results(out)[1])
-    outs = [str(tmp_path / ('again%d' % n)) for n in (2, 3)]
-    codes = {}
-    gradings = [threading.Thread(target=lambda o=out: codes.setdefault(o, grade(lab, [folders[s] for s in students],
-                                                                                 o, '--jobs', '1').returncode))
-                for out in outs]
-    for grading in gradings:
-        grading.start()
-    for grading in gradings:
-        grading.join()
-    assert codes == {out: 0 for out in outs}
+    out = str(tmp_path / 'again')
+    assert grade(lab, [folders[s] for s in students], out, '--jobs', '2').returncode == 0
     first = FIRST_GRADINGS[lab]
-    for number, out in enumerate(outs, 2):
-        again = verdicts(read_results(out)[1])
-        assert sorted(again) == students
-        differences = ['%s: %r the first time, %r the grading number %d' % (s, first[s], again[s], number)
-                       for s in students if again[s] != first[s]]
-        assert differences == []
+    again = verdicts(read_results(out)[1])
+    assert sorted(again) == students
+    differences = ['%s: %r the first time, %r the second' % (s, first[s], again[s])
+                   for s in students if again[s] != first[s]]
+    assert differences == []
 
 
 def test_archives_and_grading_again_into_the_same_folder(archives, tmp_path):
