@@ -12,8 +12,11 @@ distances measured vary from run to run). Run after `source tools/env.sh`:
 Each build's first check of a lab is a warm-up, not counted: after it, "after" builds the package in
 the kept workspace of the last check (grading_session.BuildCache) as the student's next check
 would; --cold empties that before each of its checks (the first check after a change to the build
-description). About 5 minutes a round of the three labs with --before."""
+description). --after-a-fix times, instead of each check, a check of a copy of the model whose first
+C++ file (by name) begins with an `#error` and then the check after the student's fix (the labs
+with C++ only). About 5 minutes a round of the three labs with --before."""
 import argparse
+import glob
 import json
 import os
 import re
@@ -62,6 +65,28 @@ def one_check(lab, package, python_path):
     return time.monotonic() - started, verdicts(done.stdout)
 
 
+def broken_copy(package, folder):
+    """A copy of the package in `folder` and its first C++ file, or (None, None) without C++."""
+    copy = os.path.join(folder, 'broken', os.path.basename(package))
+    shutil.copytree(package, copy, symlinks=True)
+    sources = sorted(glob.glob(os.path.join(copy, 'src', '*.cpp')))
+    return (copy, sources[0]) if sources else (None, None)
+
+
+def checks_after_a_fix(lab, package, source, python_path):
+    """The check of the package with `source` broken (a compiler error on its first line), then
+    the one after the fix: [(what, seconds, verdicts)]."""
+    with open(source) as stream:
+        fixed = stream.read()
+    with open(source, 'w') as stream:
+        stream.write('#error the student\'s mistake\n' + fixed)
+    failing = one_check(lab, package, python_path)
+    with open(source, 'w') as stream:
+        stream.write(fixed)
+    after = one_check(lab, package, python_path)
+    return [('fails to build', ) + failing, ('after the fix', ) + after]
+
+
 def busy():
     return subprocess.Popen(['/usr/bin/python3', '-c', 'while True: pass'])
 
@@ -73,6 +98,8 @@ def main():
     parser.add_argument('--labs', nargs='+', default=list(LABS), choices=LABS)
     parser.add_argument('--quiet-only', action='store_true', help='no runs beside a busy process')
     parser.add_argument('--cold', action='store_true', help='"after" without the kept build of the last check')
+    parser.add_argument('--after-a-fix', action='store_true',
+                        help='a check that fails to build, then the check after the fix (C++ labs)')
     args = parser.parse_args()
     exit_on_terminate()   # a kill stops the busy process with the bench (its finally)
     src = os.path.dirname(os.path.realpath(rospkg.RosPack().get_path('course_grader')))
@@ -84,7 +111,12 @@ def main():
             builds.insert(0, ('before', older_package(args.before, folder)))
         times, seen = {}, {}
         for lab in args.labs:
-            package = os.path.join(src, lab)
+            package, source = os.path.join(src, lab), None
+            if args.after_a_fix:
+                package, source = broken_copy(package, os.path.join(folder, lab))
+                if package is None:
+                    print('%s: no C++ file, no check after a fix' % lab, file=sys.stderr)
+                    continue
             for build, path in builds:   # warm-up
                 one_check(lab, package, path)
             for _ in range(args.rounds):
@@ -94,11 +126,13 @@ def main():
                         for build, path in builds:
                             if args.cold and build == 'after':
                                 shutil.rmtree(os.path.join(cache, lab), ignore_errors=True)
-                            seconds, judged = one_check(lab, package, path)
-                            times.setdefault((lab, machine, build), []).append(seconds)
-                            seen.setdefault(lab, set()).add(tuple(judged))
-                            print('%s %s %s: %.1f s, %d / %d passed' % (lab, machine, build, seconds, sum(
-                                1 for v in judged if v[1]), len(judged)), file=sys.stderr, flush=True)
+                            checks = (checks_after_a_fix(lab, package, source, path) if source else
+                                      [('',) + one_check(lab, package, path)])
+                            for what, seconds, judged in checks:
+                                times.setdefault((lab, machine, (build + ', ' + what).strip(', ')), []).append(seconds)
+                                seen.setdefault((lab, what), set()).add(tuple(judged))
+                                print('%s %s %s %s: %.1f s, %d / %d passed' % (lab, machine, build, what, seconds, sum(
+                                    1 for v in judged if v[1]), len(judged)), file=sys.stderr, flush=True)
                     finally:
                         if spinner:
                             spinner.kill()
@@ -110,10 +144,10 @@ def main():
     for (lab, machine, build), values in times.items():
         print('| %s | %s | %s | %.1f s (%.1f - %.1f) | %s |' % (
             lab, machine, build, statistics.median(values), min(values), max(values),
-            'yes' if len(seen[lab]) == 1 else 'NO: %d sets' % len(seen[lab])))
-    for lab, sets in seen.items():
+            'yes' if all(len(sets) == 1 for (seen_lab, _), sets in seen.items() if seen_lab == lab) else 'NO'))
+    for (lab, what), sets in seen.items():
         if len(sets) > 1:
-            print('\n%s: the verdicts differ:' % lab)
+            print('\n%s %s: the verdicts differ:' % (lab, what))
             for judged in sets:
                 print('  ', judged)
 

@@ -179,9 +179,11 @@ class BuildCache:
     student's own catkin_make does. It is used while the package's files are the same by name and
     its build description (BUILD_DESCRIPTION, msg/, srv/, ...) the same to the byte: only the
     contents of sources, scripts and launch files may differ, which make rebuilds from their
-    dates. A build that fails there is done again afresh (the verdict and its sentence are a fresh
-    build's, as the teacher's run has them), unless it began from an empty workspace. Held by one session at a time (a lock); another one
-    builds afresh in its scratch folder."""
+    dates. A build that fails there is done again afresh in the emptied cache (the verdict and its
+    sentence are a fresh build's, as the teacher's run has them), unless it began from an empty
+    workspace; what a failed build compiled is kept (not after a timeout), so that the check after
+    the student's fix builds only the files fixed. Held by one session at a time (a lock); another
+    one builds afresh in its scratch folder."""
 
     def __init__(self, folder):
         self.folder = os.path.abspath(folder)
@@ -270,20 +272,28 @@ def build(session, scratch, cache=None, jobs=1):
     in the workspace kept there when it can. Returns the environment of the built overlay, or
     raises BuildFailed."""
     if cache is not None and cache.acquire():
-        try:
-            workspace = cache.prepare(session.package_dir, session.rubric.package)
-        except OSError:   # a full disk, a file it cannot read: built afresh, as without a cache
-            workspace = None
-        if workspace is not None:
+        for attempt in ('as kept', 'afresh'):
+            if attempt == 'afresh':
+                # A failure from a kept build: the verdict and its sentence are those of a fresh
+                # build, made in the emptied cache.
+                cache.clear()
+            try:
+                workspace = cache.prepare(session.package_dir, session.rubric.package)
+            except OSError:   # a full disk, a file it cannot read: built afresh, as without a cache
+                workspace = None
+            if workspace is None:
+                break
             try:
                 return _build(session, workspace, None, jobs)
             except BuildFailed as failed:
-                cache.clear()
-                # A build begun from nothing is a fresh build already; a second one would take the
-                # session beyond its wall limit after a timeout.
+                # A build stopped at its time limit may leave half-written objects: none is kept,
+                # nor built again (a second build would take the session beyond its wall limit).
+                if failed.timed_out:
+                    cache.clear()
+                # A build begun from nothing is a fresh build already: what it compiled is kept,
+                # so that the check after the student's fix builds only what changed.
                 if cache.fresh or failed.timed_out:
                     raise
-                # The verdict and its sentence are those of a fresh build.
     return _build(session, os.path.join(scratch, 'ws'), session.package_dir, jobs)
 
 

@@ -67,26 +67,47 @@ def test_one_session_at_a_time_holds_it(tmp_path):
     assert not second.acquire()
 
 
-def test_a_failed_build_is_done_again_afresh_only_when_it_began_from_a_kept_one(tmp_path, monkeypatch):
-    folder = package(str(tmp_path / 'p'), FILES)
+def failing_builds(monkeypatch, timed_out=False):
+    """_build replaced by one that compiles an object into its workspace and fails; the list of its
+    builds: (in the cache's workspace, whether it began with an object there)."""
     builds = []
 
     def failing_build(session, workspace, copy_from, jobs):
-        builds.append('kept' if copy_from is None else 'scratch')
-        raise grading_session.BuildFailed('first compiler error: a.cpp line 1: expected')
+        made = os.path.join(workspace, 'build', 'a.o')
+        builds.append((copy_from is None, os.path.exists(made)))
+        package(os.path.join(workspace, 'build'), {'a.o': ''})
+        raise grading_session.BuildFailed('first compiler error: a.cpp line 1: expected', timed_out=timed_out)
 
     monkeypatch.setattr(grading_session, '_build', failing_build)
+    return builds
+
+
+def check_build(tmp_path, folder):
     session = types.SimpleNamespace(package_dir=folder, rubric=types.SimpleNamespace(package='p'))
-    # The first check: the cache's workspace begins empty, so its failure is a fresh build's.
     with pytest.raises(grading_session.BuildFailed, match='a.cpp line 1'):
         grading_session.build(session, str(tmp_path / 'scratch'), BuildCache(str(tmp_path / 'cache')))
-    assert builds == ['kept']
-    # A build kept from a check before: its failure is checked by a fresh build.
-    cache = BuildCache(str(tmp_path / 'cache'))
-    assert cache.acquire()
-    cache.prepare(folder, 'p')
-    cache._lock.close()
+
+
+def test_a_failed_build_is_done_again_afresh_only_when_it_began_from_a_kept_one(tmp_path, monkeypatch):
+    folder = package(str(tmp_path / 'p'), FILES)
+    builds = failing_builds(monkeypatch)
+    # The first check: the cache's workspace begins empty, so its failure is a fresh build's.
+    check_build(tmp_path, folder)
+    assert builds == [(True, False)]
+    # The next check: the kept build, with what the failed one compiled; it fails too, so a fresh
+    # build follows, in the emptied cache.
     builds.clear()
-    with pytest.raises(grading_session.BuildFailed):
-        grading_session.build(session, str(tmp_path / 'scratch'), BuildCache(str(tmp_path / 'cache')))
-    assert builds == ['kept', 'scratch']
+    check_build(tmp_path, folder)
+    assert builds == [(True, True), (True, False)]
+    # What that fresh build compiled is kept for the check after.
+    assert os.path.exists(str(tmp_path / 'cache' / 'ws' / 'build' / 'a.o'))
+
+
+def test_a_build_stopped_at_its_time_limit_is_neither_kept_nor_done_again(tmp_path, monkeypatch):
+    folder = package(str(tmp_path / 'p'), FILES)
+    builds = failing_builds(monkeypatch)
+    check_build(tmp_path, folder)
+    builds = failing_builds(monkeypatch, timed_out=True)
+    check_build(tmp_path, folder)
+    assert builds == [(True, True)]
+    assert not os.path.exists(str(tmp_path / 'cache' / 'ws'))
