@@ -9,6 +9,7 @@ import pytest
 from PIL import Image
 
 from course_common.process_table import command_line, marked_processes, new_mark, stop_marked, with_mark
+from course_testing.rviz import UNCOVERED_AT_MOST
 from course_testing.screen import red_pixels, uncovered_pixels
 from course_common.waiting import wait_until
 
@@ -130,5 +131,5 @@ def test_the_rviz_screenshot_shows_red_laser_points(tour):
 def test_the_rviz_window_fills_the_screen_and_shows_the_robot(tour):
     image = picture(tour[1], 'rviz.png')
     uncovered, where = uncovered_pixels(os.path.join(str(tour[1]), 'rviz.png'))
-    assert uncovered < 0.01 * 1280 * 1024, where  # no black bands round the window
+    assert uncovered <= UNCOVERED_AT_MOST * 1280 * 1024, where  # no black bands round the window
     assert pixels_of(image, RVIZ_ROBOT_BODY) > 400  # the body, over 20 px square
