@@ -2,17 +2,33 @@
 # Builds the image from docker/ and runs the test command inside it (as the non-root user `student`),
 # then checks that the image serves the browser view of a lab to the outside (tools/docker-view-check.py)
 # and runs the students' Docker page, docs/student-docker.md, as written (tools/student-docker-check.py).
-# Usage: tools/docker-test.sh [SUITE]      (Debian suite of the image: trixie, the default, or bookworm)
+# Usage: tools/docker-test.sh [SUITE] [--no-suite]
+#   SUITE       Debian suite of the image: trixie, the default, or bookworm
+#   --no-suite  the image's own checks only, not ./test.sh in it (CI, for the image of the suite whose
+#               every test its host has just run: docs/docker-and-ci.md#ci)
 # tools/docker.sh reaches or starts the engine and makes the image; a dockerd started here is stopped.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
+suite=trixie
+run_suite=yes
+for argument in "$@"; do
+    case "$argument" in
+        --no-suite) run_suite=no ;;
+        -*) echo "docker-test: unknown option $argument (usage: tools/docker-test.sh [SUITE] [--no-suite])" >&2; exit 2 ;;
+        *) suite=$argument ;;
+    esac
+done
 # shellcheck source=tools/docker.sh
 source "$ROOT/tools/docker.sh"
 course_docker_engine
-image=$(course_docker_image "${1:-trixie}")
-echo "docker-test: running the tests in $image (user $(docker run --rm "$image" id -un))"
-docker run --rm --network host "$image" ./test.sh
+image=$(course_docker_image "$suite")
+if [ "$run_suite" = yes ]; then
+    echo "docker-test: running the tests in $image (user $(docker run --rm "$image" id -un))"
+    docker run --rm --network host "$image" ./test.sh
+else
+    echo "docker-test: $image built; its tests not run here (--no-suite)"
+fi
 # The browser view as the image serves it (docker/entrypoint.sh), seen from outside the container.
 /usr/bin/python3 "$ROOT/tools/docker-view-check.py" "$image"
 # The students' page: their container, workspace, terminals, restarts (docs/student-docker.md).
