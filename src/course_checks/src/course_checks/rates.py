@@ -1,4 +1,5 @@
 """Rates of arrival and the digits a publisher cycles through (the lab report's exercise 1)."""
+import collections
 import math
 import statistics
 
@@ -164,22 +165,29 @@ def publisher_verdict(entries, skipped, count, rate, tolerance, id_number, still
     return Verdict(abs(measured - rate) <= tolerance and in_order.passed, expected + seen + digits_wrong)
 
 
-def subscriber_verdict(heard, wanted, id_number, own_number):
-    """Exercise 1's subscriber over the numbers it printed (`I heard: [n]`, in order): `wanted` of the
-    ID's digits, in order, and `own_number`, which the grader published on the topic itself. The
-    digits alone could be printed without hearing anything (the ID is known); a number drawn by the
-    grader at each run can only be heard."""
-    digits = [number for number in heard if number != own_number]
-    if len(digits) < wanted:
-        return Verdict(False, 'expected the subscriber to print `I heard: [d]` for each digit of %s; seen %d such '
-                       'lines' % (id_number, len(digits)))
-    if own_number not in heard:
-        return Verdict(False, 'expected the subscriber to print each number it hears; the grader published %d on '
-                       'ZabirovaKostyukova itself, and no line `I heard: [%d]` came: the lines are not what it '
-                       'hears' % (own_number, own_number))
-    in_order = cycles_through(digits, id_number)
-    return Verdict(in_order.passed, 'expected `I heard: [d]` for each digit of %s, in order, and for the grader\'s '
-                   'own number; seen %s' % (id_number, 'them' if in_order.passed else in_order.reason))
+SHOWN_NUMBERS = 20   # of what a subscriber printed, the sentence shows this many
+
+
+def subscriber_verdict(heard, sent):
+    """Exercise 1's subscriber, run without the publisher while the grader published the digits
+    `sent` on its topic, one at a time (none when nothing subscribed): `heard`, the numbers it
+    printed (`I heard: [n]`, in order), must be those, and no other (a line the grader sent nothing
+    for was not heard)."""
+    heard, sent = list(heard), list(sent)
+    if heard == sent:
+        seen = 'each of them'
+    elif not heard:
+        seen = 'no such line'
+    else:
+        seen = ' '.join(str(number) for number in heard[:SHOWN_NUMBERS])
+        seen += ' ...' if len(heard) > SHOWN_NUMBERS else ''
+        extra = sum((collections.Counter(heard) - collections.Counter(sent)).values())
+        seen += ' (%d line%s for %d digits%s)' % (len(heard), '' if len(heard) == 1 else 's', len(sent),
+                                                   '; %d of them for no digit the grader published: printed, not '
+                                                   'heard' % extra if extra else '')
+    published = ' '.join(str(digit) for digit in sent) or 'none: nothing had subscribed when the lines came'
+    return Verdict(heard == sent, 'expected `I heard: [d]` for each digit the grader published on ZabirovaKostyukova '
+                   'in place of the publisher (%s), in order, and no other; seen %s' % (published, seen))
 
 
 def cycles_through(digits, id_number):

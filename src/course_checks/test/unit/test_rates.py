@@ -76,21 +76,35 @@ def _run(clock, publishes_at, steps, runs_every=1):
     return stamps
 
 
-def test_the_subscriber_prints_the_digits_in_order_and_the_number_the_grader_published():
-    digits = [int(d) for d in '4095127' * 3]
-    heard = digits[:9] + [73015, 73015] + digits[9:]   # heard twice: the grader sends it until it is printed
-    verdict = subscriber_verdict(heard, 21, '4095127', 73015)
-    assert verdict.passed and verdict.reason == ("expected `I heard: [d]` for each digit of 4095127, in order, "
-                                                 "and for the grader's own number; seen them")
-    # The ID's digits printed in a loop, nothing subscribed: they are known beforehand, the number is not.
-    printed_only = subscriber_verdict(digits * 2, 21, '4095127', 73015)
-    assert not printed_only.passed and printed_only.reason == (
-        'expected the subscriber to print each number it hears; the grader published 73015 on ZabirovaKostyukova '
-        'itself, and no line `I heard: [73015]` came: the lines are not what it hears')
-    too_few = subscriber_verdict(digits[:5] + [73015], 21, '4095127', 73015)
-    assert not too_few.passed and too_few.reason.endswith('seen 5 such lines')
-    shuffled = subscriber_verdict(digits[1:2] + digits[:1] + digits[2:] + [73015], 21, '4095127', 73015)
-    assert not shuffled.passed and 'are not the ID 4095127 over and over' in shuffled.reason
+def test_the_subscriber_prints_each_digit_the_grader_published_and_no_other():
+    sent = [3, 1, 4, 1, 5, 9, 2, 6, 5, 3]
+    verdict = subscriber_verdict(sent, sent)
+    assert verdict.passed and verdict.reason == (
+        'expected `I heard: [d]` for each digit the grader published on ZabirovaKostyukova in place of the '
+        'publisher (3 1 4 1 5 9 2 6 5 3), in order, and no other; seen each of them')
+    # Nothing subscribed, or nothing printed.
+    silent = subscriber_verdict([], sent)
+    assert not silent.passed and silent.reason.endswith('; seen no such line')
+    # The ID's digits printed from what the node knows (in a loop, or as it hears anything): lines
+    # the grader sent nothing for.
+    memory = subscriber_verdict([int(d) for d in '4095127' * 3], sent)
+    assert not memory.passed and memory.reason.endswith(
+        'seen 4 0 9 5 1 2 7 4 0 9 5 1 2 7 4 0 9 5 1 2 ... (21 lines for 10 digits; 14 of them for no digit the '
+        'grader published: printed, not heard)'), memory.reason
+    # Printed with nothing subscribed: the grader published nothing.
+    unheard = subscriber_verdict([4, 0, 9], [])
+    assert not unheard.passed and unheard.reason == (
+        'expected `I heard: [d]` for each digit the grader published on ZabirovaKostyukova in place of the '
+        'publisher (none: nothing had subscribed when the lines came), in order, and no other; seen 4 0 9 (3 lines '
+        'for 0 digits; 3 of them for no digit the grader published: printed, not heard)')
+    # The grader's digits as heard, the ID's from memory among them.
+    mixed = subscriber_verdict([3, 4, 1, 0, 4, 9, 1, 5, 5, 9, 2, 6, 5, 3], sent)
+    assert not mixed.passed and mixed.reason.endswith('(14 lines for 10 digits; 4 of them for no digit the grader '
+                                                      'published: printed, not heard)')
+    missed = subscriber_verdict(sent[:4] + sent[5:], sent)
+    assert not missed.passed and missed.reason.endswith('seen 3 1 4 1 9 2 6 5 3 (9 lines for 10 digits)')
+    shuffled = subscriber_verdict(sent[1:2] + sent[:1] + sent[2:], sent)
+    assert not shuffled.passed and shuffled.reason.endswith('seen 1 3 4 1 5 9 2 6 5 3 (10 lines for 10 digits)')
 
 
 def test_a_publisher_that_went_on_while_the_clock_stood_still_is_measured_on_the_wall_clock():

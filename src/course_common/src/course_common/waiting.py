@@ -63,9 +63,9 @@ class Deadline:
     def left(self, at_least=0.5):
         return max(at_least, self.end - time.monotonic())
 
-    def wait(self, condition, seconds=None, gave_up=None):
+    def wait(self, condition, seconds=None, gave_up=None, poll=0.05):
         """wait_for condition() within the time left (and `seconds` at most, when given)."""
-        return wait_for(condition, self.left() if seconds is None else min(seconds, self.left()), gave_up)
+        return wait_for(condition, self.left() if seconds is None else min(seconds, self.left()), gave_up, poll)
 
 
 def wait_for(condition, seconds, gave_up=None, poll=0.05):

@@ -6,11 +6,13 @@ build (a `sitecustomize.py` in devel/, a library) runs inside it.
   python3 -m course_grader.turtlesim_launch describe PACKAGE FILE [NAME:=VALUE ...] [-- PACKAGE FILE ...]
       prints, for each launch file, one line: `turtlesim nodes: ` and, as JSON, each turtlesim node
       it declares, as roslaunch's own loader reads it (the arguments included), or why it could not;
-  python3 -m course_grader.turtlesim_launch launch [ROSLAUNCH OPTIONS] PACKAGE FILE [NAME:=VALUE ...]
+  python3 -m course_grader.turtlesim_launch launch [--only PACKAGE/TYPE] [ROSLAUNCH OPTIONS] PACKAGE FILE
+          [NAME:=VALUE ...]
       is `roslaunch` with those nodes and their private parameters left out; it starts the other
-      nodes as roslaunch would. roscore.xml is not read: the grader's master has its parameters
-      (grading_session.Master) and rosout is a core node, which roslaunch starts only with a master
-      of its own.
+      nodes as roslaunch would, or with --only the nodes of that executable alone (a node the grader
+      judges on its own, the grader standing in for the others). roscore.xml is not read: the
+      grader's master has its parameters (grading_session.Master) and rosout is a core node, which
+      roslaunch starts only with a master of its own.
 """
 import contextlib
 import json
@@ -59,6 +61,14 @@ def leave_out_turtlesim(config):
     return [full_name(node) for node in left_out]
 
 
+def keep_only(config, package, node_type):
+    """Leaves in the configuration the nodes of that executable alone: returns the full names of
+    the others, taken out."""
+    others = [node for node in config.nodes if (node.package, node.type) != (package, node_type)]
+    config.nodes = [node for node in config.nodes if (node.package, node.type) == (package, node_type)]
+    return [full_name(node) for node in others]
+
+
 @contextlib.contextmanager
 def without_roscore_xml():
     """roslaunch's configuration read without the roscore.xml it adds to every launch: its two
@@ -74,12 +84,15 @@ def without_roscore_xml():
 
 class WithoutTurtlesim(roslaunch.parent.ROSLaunchParent):
     """roslaunch's parent process, its configuration read without roscore.xml and its turtlesim
-    nodes left out."""
+    nodes left out; with `only` (package, type), the nodes of that executable alone."""
+    only = None
 
     def _load_config(self):
         with without_roscore_xml():
             super()._load_config()
         leave_out_turtlesim(self.config)
+        if self.only:
+            keep_only(self.config, *self.only)
 
 
 def describe(package, launch_file, args):
@@ -106,8 +119,12 @@ def main(argv=None):
             print(line, flush=True)
         return 0
     if argv[:1] == ['launch']:
+        argv = argv[1:]
+        if argv[:1] == ['--only'] and len(argv) > 1 and argv[1].count('/') == 1:
+            WithoutTurtlesim.only = tuple(argv[1].split('/'))
+            argv = argv[2:]
         roslaunch.parent.ROSLaunchParent = WithoutTurtlesim
-        sys.argv = ['roslaunch'] + argv[1:]   # roslaunch's loader reads NAME:=VALUE from sys.argv
+        sys.argv = ['roslaunch'] + argv   # roslaunch's loader reads NAME:=VALUE from sys.argv
         return roslaunch.main(sys.argv)
     sys.exit(__doc__)
 

@@ -46,7 +46,8 @@ def test_each_criterion_is_decided_once_by_a_run_or_without_one(lab):
 @pytest.mark.parametrize('lab', labs.LABS)
 def test_each_step_runs_a_script_or_a_launch_file_or_only_reads(lab):
     for run in labs.lab_module(lab).RUNS:
-        assert run.name.endswith(('.py', '.launch')), run
+        # A launch file with one executable's node alone: FILE:EXECUTABLE.
+        assert run.name.split(':')[0].endswith(('.py', '.launch')), run
         assert run.kinds and set(run.kinds) <= {NODES, READING}, run
         assert run.criteria or run.kinds == (READING,), run   # a step that decides nothing reads
 
@@ -74,8 +75,10 @@ def test_ros_exercises_reads_the_launch_file_of_each_run_at_once_first(monkeypat
     monkeypatch.setattr(module, 'describe_launches', lambda session, launches: read.append(launches))
     reading = module.RUNS[0]
     assert not reading.criteria and reading.check(types.SimpleNamespace(rubric=rubric)) == {}
-    assert [[launch_file for launch_file, _ in launches] for launches in read] == [
-        [rubric.criterion(next(iter(run.criteria)))['launch_file'] for run in module.RUNS[1:]]]
+    files = {run.name: rubric.criterion(next(iter(run.criteria)))['launch_file'] for run in module.RUNS[1:]}
+    # The subscriber's run reads exercise1.launch with the publisher's arguments: the same reading.
+    assert files.pop('exercise1.launch:subscriber') == files['exercise1.launch']
+    assert [[launch_file for launch_file, _ in launches] for launches in read] == [list(files.values())]
 
 
 @pytest.mark.parametrize('lab', labs.LABS)

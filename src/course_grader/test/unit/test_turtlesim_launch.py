@@ -1,14 +1,18 @@
 """A student's launch file as the grader runs it: the turtlesim nodes it declares (name, namespace,
 remappings, private parameters, as roslaunch's loader reads them) are left out of what the student's
 side launches, and what reaches the trusted turtlesim is checked."""
+import sys
+
 import pytest
+import roslaunch
 import roslaunch.config
 import roslaunch.core
 import roslaunch.xmlloader
 
+from course_grader import turtlesim_launch
 from course_grader.labs.turtlesim_runs import _node
 from course_grader.grading_session import core_parameters
-from course_grader.turtlesim_launch import WithoutTurtlesim, describe, leave_out_turtlesim, turtlesim_nodes
+from course_grader.turtlesim_launch import WithoutTurtlesim, describe, keep_only, leave_out_turtlesim, turtlesim_nodes
 
 LAUNCH = '''<launch>
   <arg name="colour" default="10"/>
@@ -46,6 +50,16 @@ def test_only_the_turtlesim_node_and_its_parameters_are_left_out(tmp_path):
     assert sorted(node.namespace + node.name for node in config.nodes) == ['/circle', '/turtlesim']
     assert sorted(config.params) == ['/circle/speed', '/shared']
     assert config.clear_params == []
+
+
+def test_one_executable_s_node_alone(tmp_path):
+    """--only PACKAGE/TYPE: exercise 1's subscriber run without the publisher its launch file
+    includes; the package's node named like turtlesim is another executable's, left out too."""
+    config = loaded(tmp_path)
+    leave_out_turtlesim(config)
+    assert keep_only(config, 'ros_exercises', 'circle') == ['/turtlesim']
+    assert [node.namespace + node.name for node in config.nodes] == ['/circle']
+    assert keep_only(loaded(tmp_path), 'ros_exercises', 'subscriber') == ['/lab/sim', '/circle', '/turtlesim']
 
 
 def test_what_reaches_the_trusted_turtlesim_is_checked():
@@ -90,3 +104,19 @@ def test_the_student_s_roslaunch_reads_no_roscore_xml_and_the_master_has_its_par
     roscore = roslaunch.config.ROSLaunchConfig()
     roslaunch.config.load_roscore(roslaunch.xmlloader.XmlLoader(), roscore, verbose=False)
     assert core_parameters() == {name: param.value for name, param in roscore.params.items()}
+
+
+def test_launch_with_only_starts_that_executable_s_nodes_alone(tmp_path, monkeypatch):
+    path = tmp_path / 'exercise.launch'
+    path.write_text(LAUNCH)
+    handed = []
+    monkeypatch.setattr(roslaunch, 'main', lambda argv: handed.append(list(argv)) or 0)
+    monkeypatch.setattr(turtlesim_launch.WithoutTurtlesim, 'only', None)
+    # main() replaces roslaunch's parent class and sys.argv, as in its own process: restored after.
+    monkeypatch.setattr(roslaunch.parent, 'ROSLaunchParent', roslaunch.parent.ROSLaunchParent)
+    monkeypatch.setattr(sys, 'argv', list(sys.argv))
+    assert turtlesim_launch.main(['launch', '--only', 'ros_exercises/circle', str(path), 'colour:=3']) == 0
+    assert handed == [['roslaunch', str(path), 'colour:=3']]   # roslaunch's loader reads NAME:=VALUE there
+    parent = roslaunch.parent.ROSLaunchParent('run', [str(path)], is_core=False)
+    parent._load_config()
+    assert [node.namespace + node.name for node in parent.config.nodes] == ['/circle']

@@ -13,10 +13,11 @@ from course_grader import feedback
 
 class LabRun(NamedTuple):
     """One step of a lab after the build: a row of the lab's table RUNS."""
-    name: str          # the script or launch file it runs (its log is <name>.log)
+    name: str          # the script or launch file it runs
     check: Callable    # check(session) -> {criterion id: Verdict}
     criteria: dict     # {criterion id: the rubric settings its check reads} of those it decides (a reading: none)
     kinds: tuple       # what it takes of the wall limit: a wall_limit kind (NODES, READING) for each part
+    log: str = None    # the log its check writes: <name without its extension>.log unless given
 
 
 def criteria_of(static, runs):
@@ -124,7 +125,8 @@ def run_each(session, runs, **given):
             print('grade_submission: %s broke down (%s) at %s' % (run.name, type(error).__name__, ' < '.join(
                 '%s:%d %s' % (os.path.basename(frame.filename), frame.lineno, frame.name)
                 for frame in reversed(traceback.extract_tb(error.__traceback__)[-4:]))), flush=True)
-            tail = feedback.log_tail(session.log_path(os.path.splitext(run.name)[0] + '.log'), 3).splitlines()
+            tail = feedback.log_tail(session.log_path(run.log or os.path.splitext(run.name)[0] + '.log'),
+                                     3).splitlines()
             reason = ('the run of %s broke down (%s: %s); the last lines %s printed: %s' % (
                 run.name, type(error).__name__, str(error)[:200] or '-', run.name, ' | '.join(tail) or 'none'))
             if "can't start new thread" in str(error) or getattr(error, 'errno', None) == errno.EAGAIN:

@@ -24,6 +24,9 @@ from course_grader.labs.turtlesim_runs import SimulatedClock, TurtlesimLaunch, d
 from course_grader.wall_limit import NODES, READING
 
 NUMBER = r'(-?\d+\.\d+)'
+SEND_SECONDS = 0.2    # the grader's next digit to exercise 1's subscriber after this, if the last is not printed yet
+PRINT_SECONDS = 3.0   # then the subscriber's last lines may take this long
+UNHEARD_SECONDS = 1.0   # after a line printed before anything subscribed, how long it may still take to subscribe
 
 
 def _printed(run, pattern):
@@ -48,15 +51,16 @@ def _launches(session):
 
 class Exercise(TurtlesimLaunch):
     """One of the student's launch files, run as the lab asks (its turtlesim on the trusted side, at
-    the criterion's real-time factor), logged to <name>.log, stopped at the end; turtlesim's window
-    is kept as `picture`."""
+    the criterion's real-time factor: without one, on the wall clock), logged to <name>.log, stopped
+    at the end; turtlesim's window is kept as `picture`. `only`: that executable's node of the file
+    alone (TurtlesimLaunch)."""
 
-    def __init__(self, session, criterion, log_name, *args, picture=None, lock_step=False):
+    def __init__(self, session, criterion, log_name, *args, picture=None, lock_step=False, only=None):
         self.deadline = Deadline(session.rubric.limits['run_seconds'])
-        self.real_time_factor = criterion['real_time_factor']   # how far the turtle drives between poses heard
+        # How far the turtle drives between poses heard; a criterion without one runs on the wall clock.
+        self.real_time_factor = criterion.settings.get('real_time_factor')
         super().__init__(session, criterion['launch_file'], list(args), log_name, picture=picture,
-                         real_time_factor=criterion['real_time_factor'],
-                         lock_step=lock_step)
+                         real_time_factor=self.real_time_factor, lock_step=lock_step, only=only)
 
     def on_interface(self, recorder, name):
         """A failing verdict when a node called a teleport or /reset, or the turtle moved where no
@@ -64,9 +68,9 @@ class Exercise(TurtlesimLaunch):
         that published on the pose topic fails the run's criteria: TurtlesimLaunch.judged.)"""
         return turtle.no_unused_calls(self.service_calls()) or turtle.no_jumps(recorder, name, self.real_time_factor)
 
-    def wait(self, condition, seconds=None):
+    def wait(self, condition, seconds=None, poll=0.05):
         """condition() within `seconds` (the run's time left at most); False as soon as the launch ended."""
-        return self.deadline.wait(condition, seconds, gave_up=self.run.ended)
+        return self.deadline.wait(condition, seconds, gave_up=self.run.ended, poll=poll)
 
     def printed(self, pattern):
         return _printed(self.run, pattern)
@@ -213,23 +217,11 @@ def _heard_numbers(exercise):
     return [int(number) for (number,) in exercise.printed(r'I heard: \[(\d+)\]')]
 
 
-def _publish_until_printed(exercise, number, seconds=5.0):
-    """Publishes `number` on /ZabirovaKostyukova, again at each look, until the subscriber has printed
-    it (or `seconds` passed): the first may go before the subscriber is connected to the grader."""
-    publisher = rospy.Publisher('/ZabirovaKostyukova', Int32, queue_size=1)
-
-    def printed_else_sent_again():
-        if number in _heard_numbers(exercise):
-            return True
-        publisher.publish(Int32(number))
-        return False
-    try:
-        exercise.wait(printed_else_sent_again, seconds)
-    finally:
-        publisher.unregister()
+def _exercise1_args(rate_c):
+    return ['rate:=%g' % rate_c['rate'], 'id:=' + str(rate_c['id_number'])]
 
 
-def check_publisher_subscriber(session):
+def check_publisher(session):
     rate_c = session.rubric.criterion('publisher_rate')
     id_number, rate, skipped = str(rate_c['id_number']), rate_c['rate'], int(rate_c['skipped'])
     count = int(rate_c['messages']) + skipped
@@ -241,34 +233,63 @@ def check_publisher_subscriber(session):
     # for ones the machine delays: at 25 Hz it was measured at 50.00 Hz).
     digits = HeldClockDriver('/ZabirovaKostyukova', Int32, 1.0 / rate, rate_c['real_time_factor'], skipped,
                              stand_still_after=skipped + int(rate_c['messages']) // 2)
-    exercise = Exercise(session, rate_c, 'exercise1.log', 'rate:=%g' % rate, 'id:=' + id_number)
+    exercise = Exercise(session, rate_c, 'exercise1.log', *_exercise1_args(rate_c))
     window = 1.5 * count / rate   # simulated seconds from the first digit: a slower publisher is measured over what came
-
-    outcomes = {}
     try:
         start_seconds = session.rubric.limits['start_seconds']
         complete = (digits.wait_for_first(exercise.wait, start_seconds, lambda: node_names() - exercise.known_nodes)
                     and exercise.wait(lambda: digits.measured(count, window), start_seconds + window))
         entries = list(digits.entries)
         if len(entries) < skipped + 2:   # a rate needs two messages after those left out
-            outcomes['publisher_rate'] = Verdict(False, exercise.nothing(
+            verdict = Verdict(False, exercise.nothing(
                 'publish the digits of %s on /ZabirovaKostyukova; %d arrived' % (id_number, len(entries))))
         else:
-            outcomes['publisher_rate'] = rates.publisher_verdict(
+            verdict = rates.publisher_verdict(
                 [(stamp, digit.data) for stamp, digit in entries], skipped, count, rate, rate_c['tolerance'], id_number,
                 digits.still, complete)
-        wanted = session.rubric.criterion('subscriber_prints')['repeats'] * len(id_number)
-        exercise.wait(lambda: len(_heard_numbers(exercise)) >= wanted, 10)
-        # The ID's digits are known beforehand: a node could print them without subscribing to
-        # anything. A number drawn here at each run can only be heard.
-        own_number = random.SystemRandom().randrange(10000, 100000)
-        if len(_heard_numbers(exercise)) >= wanted:
-            _publish_until_printed(exercise, own_number)
-        outcomes['subscriber_prints'] = rates.subscriber_verdict(_heard_numbers(exercise), wanted, id_number, own_number)
-        return exercise.judged(outcomes)
+        return exercise.judged({'publisher_rate': verdict})
     finally:
         exercise.finish()
         digits.close()
+
+
+def check_subscriber(session):
+    """Exercise 1's subscriber on its own: exercise1.launch (with exercise 1's arguments) with the
+    node of the subscriber's executable alone, the grader publishing in place of the publisher
+    digits it draws at each run. The ID's digits are known beforehand (a node could print them
+    without hearing anything), and the publisher's points are its own: these can only be heard."""
+    criterion = session.rubric.criterion('subscriber_prints')
+    rate_c = session.rubric.criterion('publisher_rate')
+    sent = [random.SystemRandom().randrange(10) for _ in range(int(criterion['digits']))]
+    grader = rospy.Publisher('/ZabirovaKostyukova', Int32, queue_size=len(sent))
+    exercise = Exercise(session, criterion, 'exercise1_subscriber.log', *_exercise1_args(rate_c),
+                        only=criterion['executable'])
+    try:
+        def subscribed():
+            return grader.get_num_connections() > 0
+        # A line printed before anything subscribed ends the wait too (it was not heard); the node
+        # may still subscribe, and hear the grader's digits or not.
+        exercise.wait(lambda: subscribed() or _heard_numbers(exercise), session.rubric.limits['start_seconds'])
+        exercise.wait(subscribed, UNHEARD_SECONDS)
+        if subscribed():
+            # One digit at a time: the next once the last is printed (looked for every 5 ms: a
+            # ROS_INFO line comes within a millisecond or two), or after SEND_SECONDS.
+            for printed, digit in enumerate(sent, 1):
+                grader.publish(Int32(digit))
+                exercise.wait(lambda wanted=printed: len(_heard_numbers(exercise)) >= wanted, SEND_SECONDS, poll=0.005)
+            exercise.wait(lambda: len(_heard_numbers(exercise)) >= len(sent), PRINT_SECONDS)
+        else:
+            sent = []
+        if sent or _heard_numbers(exercise):
+            verdict = rates.subscriber_verdict(_heard_numbers(exercise), sent)
+        else:
+            verdict = Verdict(False, exercise.nothing(
+                'subscribe to /ZabirovaKostyukova with its %s node, run without the file\'s other nodes (the grader '
+                'publishing in place of the publisher); nothing subscribed' % criterion['executable']))
+        return exercise.judged({'subscriber_prints': verdict})
+    finally:
+        exercise.finish()
+        grader.unregister()
 
 
 def check_listener(session):
@@ -418,11 +439,13 @@ STATIC_CRITERIA = {
 # The lab's steps after the build, in order: the six launch files read, then each run.
 RUNS = (
     LabRun('exercise1-5.launch', read_launches, {}, (READING,)),
-    LabRun('exercise1.launch', check_publisher_subscriber, {
+    LabRun('exercise1.launch', check_publisher, {
         'publisher_rate': ('launch_file', 'rate', 'id_number', 'skipped', 'messages', 'tolerance',
                            'real_time_factor'),
-        'subscriber_prints': ('repeats',),
     }, (NODES,)),
+    LabRun('exercise1.launch:subscriber', check_subscriber, {
+        'subscriber_prints': ('launch_file', 'executable', 'digits'),
+    }, (NODES,), log='exercise1_subscriber.log'),
     LabRun('exercise2.launch', check_listener, {
         'listener_prints_pose': ('launch_file', 'linear', 'angular', 'until_x', 'real_time_factor'),
     }, (NODES,)),

@@ -103,16 +103,18 @@ class SimulatedClock:
 class TurtlesimLaunch:
     """`roslaunch PACKAGE launch_file args` as the lab runs it: its turtlesim node(s) started on the
     trusted side (turtlesim's lines logged to <log>_turtlesim.txt, its canvas kept as `picture` when
-    it stops), the rest of the launch file on the student's side (logged to <log>.log)."""
+    it stops), the rest of the launch file on the student's side (logged to <log>.log). With `only`
+    (an executable of the package), that executable's node(s) of the file alone, and no turtlesim."""
 
-    def __init__(self, session, launch_file, args, log_name, real_time_factor=None, picture=None, lock_step=False):
+    def __init__(self, session, launch_file, args, log_name, real_time_factor=None, picture=None, lock_step=False,
+                 only=None):
         self.session = session
         self.command = 'roslaunch %s %s%s' % (session.rubric.package, launch_file, ''.join(' ' + arg for arg in args))
         key = (launch_file, tuple(args))
         if key not in session.turtlesim_nodes:
             describe_launches(session, [(launch_file, args)])
         declared = session.turtlesim_nodes[key]
-        self.declared = declared if isinstance(declared, list) else []
+        self.declared = declared if isinstance(declared, list) and not only else []
         self.unread = None if isinstance(declared, list) else declared
         self.sim_log = os.path.splitext(log_name)[0] + '_turtlesim.txt'
         self.name = os.path.splitext(log_name)[0]   # of its bag, <name>.bag (course_grader.bags)
@@ -133,7 +135,9 @@ class TurtlesimLaunch:
                                  lock_step=lock_step)
         # The rest starts beside turtlesim, as roslaunch starts a file's nodes: none waits for another.
         self.known_nodes = node_names()
-        self.run = session.student(LAUNCHER + ['launch', session.rubric.package, launch_file] + list(args), log_name)
+        self.run = session.student(LAUNCHER + ['launch'] + (['--only', '%s/%s' % (session.rubric.package, only)]
+                                                            if only else [])
+                                   + [session.rubric.package, launch_file] + list(args), log_name)
         for name in list(self.simulators):
             self.wait_for_turtlesim(name)
 
