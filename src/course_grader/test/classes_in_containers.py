@@ -1,6 +1,6 @@
 """The example classes graded by ./grade.sh in containers, as a teacher runs it: every example's score
-and sentence (examples/grading/<lab>/expected.yaml), the hostile one included, the same grade every
-time the class is graded again, archives, and a second grading into the same folder. Run by
+and sentence (examples/grading/<lab>/expected.yaml), the hostile one included, the model's same grade
+when graded again, archives, and a second grading into the same folder. Run by
 tools/grade-test.sh (CI, after the Docker test): not part of ./test.sh, which never runs the hostile
 examples."""
 import csv
