@@ -40,10 +40,16 @@ def _args(session, shape):
             'turn_speed:=%g' % criterion['turn_speed']]
 
 
+def _exercise1_args(rate_c):
+    """The arguments exercise1.launch is run with, for the publisher and for the subscriber alone
+    (one reading of the file serves both: describe_launches' key)."""
+    return ['rate:=%g' % rate_c['rate'], 'id:=' + str(rate_c['id_number'])]
+
+
 def _launches(session):
     """Each launch file the lab runs, with its arguments."""
     rate_c = session.rubric.criterion('publisher_rate')
-    return [(rate_c['launch_file'], ['rate:=%g' % rate_c['rate'], 'id:=%s' % rate_c['id_number']])] + [
+    return [(rate_c['launch_file'], _exercise1_args(rate_c))] + [
         (session.rubric.criterion(criterion_id)['launch_file'], []) for criterion_id in
         ('listener_prints_pose', 'circle', 'spawn_kill')] + [
         (session.rubric.criterion(shape)['launch_file'], _args(session, shape)) for shape in ('square', 'triangle')]
@@ -215,10 +221,6 @@ class HeldClockDriver:
 def _heard_numbers(exercise):
     """The numbers exercise 1's subscriber printed, `I heard: [n]`, in order."""
     return [int(number) for (number,) in exercise.printed(r'I heard: \[(\d+)\]')]
-
-
-def _exercise1_args(rate_c):
-    return ['rate:=%g' % rate_c['rate'], 'id:=' + str(rate_c['id_number'])]
 
 
 def check_publisher(session):
