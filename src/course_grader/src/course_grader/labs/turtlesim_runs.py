@@ -23,7 +23,7 @@ from course_checks.verdict import Verdict
 from course_common.waiting import wait_for
 from course_grader import bags, wall_limit
 from course_grader.labs.common import faked
-from course_grader.turtlesim_launch import PREFIX
+from course_grader import TURTLESIM_NODES_PREFIX as PREFIX
 from course_common.processes import together
 
 MAX_TURTLESIMS = 3           # turtlesim nodes of one launch file started for it, at most
