@@ -24,7 +24,10 @@ from course_grader.labs.turtlesim_runs import SimulatedClock, TurtlesimLaunch, d
 from course_grader.wall_limit import NODES, READING
 
 NUMBER = r'(-?\d+\.\d+)'
-SEND_SECONDS = 0.2    # the grader's next digit to exercise 1's subscriber after this, if the last is not printed yet
+# The grader's next digit to exercise 1's subscriber after this, if the last is not printed yet: a
+# subscriber that takes each message in a loop of its own (ros::spinOnce at 1 Hz and more) and keeps
+# one (queue of 1) hears each digit. Only a subscriber that does not print what it hears waits it out.
+SEND_SECONDS = 1.5
 PRINT_SECONDS = 3.0   # then the subscriber's last lines may take this long
 UNHEARD_SECONDS = 1.0   # after a line printed before anything subscribed, how long it may still take to subscribe
 
