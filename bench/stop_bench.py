@@ -76,7 +76,7 @@ def one_stop(command, node, topic):
     return seen['left'] - signalled, seen['ended'] - signalled, code == -signal.SIGKILL
 
 
-def figures(values):
+def median_and_range(values):
     return '%.2f s (%.2f - %.2f)' % (statistics.median(values), min(values), max(values))
 
 
@@ -107,8 +107,9 @@ def main():
         met = (sum(killed) == 0 and statistics.median(graph) <= TARGET_GRAPH_SECONDS
                and statistics.median(ended) <= TARGET_EXIT_SECONDS)
         met_all &= met
-        print('| %s | %s | %s | %s | %d of %d | %s |' % (name, machine, figures(graph), figures(ended),
-                                                        sum(killed), len(rows), 'yes' if met else 'NO'))
+        print('| %s | %s | %s | %s | %d of %d | %s |' % (
+            name, machine, median_and_range(graph), median_and_range(ended), sum(killed), len(rows),
+            'yes' if met else 'NO'))
     print('\nmedian (fastest - slowest) of %d rounds; targets: the graph left within %.1f s and the '
           'process ended within %.1f s at the median, no stop killed; load average %.1f'
           % (args.rounds, TARGET_GRAPH_SECONDS, TARGET_EXIT_SECONDS, os.getloadavg()[0]))
