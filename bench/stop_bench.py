@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """How soon the simulators stop on Ctrl-C: turtlesim_node and fake_tb3_node, each started with
-rosrun on a master of the bench's own and, once it publishes, sent SIGINT (as Ctrl-C in its
-terminal; every rostest, grading run and check stops them so). Measured from the signal: when the
-node has left the ROS graph (what a grading run waits for before it goes on) and when its process
-has ended, in --rounds rounds, each on a quiet machine and beside one busy process that the bench
-starts and stops. Prints a Markdown table. Run it after `source tools/env.sh`:
+rosrun on a master of the bench's own and, once the master lists it as a publisher, sent SIGINT
+(as Ctrl-C in its terminal; every rostest, grading run and check stops them so). Measured from the
+signal: when the node has left the ROS graph (what a grading run waits for before it goes on) and
+when its process has ended, in --rounds rounds, each on a quiet machine and beside one busy
+process that the bench starts and stops. Prints a Markdown table. Run it after `source tools/env.sh`:
 
     /usr/bin/python3 bench/stop_bench.py [--rounds 5]
 
@@ -30,7 +30,7 @@ from course_common.processes import stop_process_group
 from course_common.waiting import wait_until
 from fake_tb3_bench import start_master
 
-# Each simulator: its rosrun command, its node's name, a topic it publishes once it runs.
+# Each simulator: its rosrun command, its node's name, a topic it registers once it runs.
 SIMULATORS = {
     'turtlesim': (['rosrun', 'turtlesim', 'turtlesim_node'], '/turtlesim', '/turtle1/pose'),
     'fake_tb3': (['rosrun', 'fake_tb3', 'fake_tb3_node'], '/fake_tb3', '/scan'),
@@ -42,14 +42,14 @@ CALLER = '/stop_bench'
 
 
 def publishes(topic):
-    """Someone publishes `topic` now, as the master says."""
+    """The master lists a publisher of `topic` (the node registered it)."""
     publishers = rosgraph.Master(CALLER).getSystemState()[0]
     return any(name == topic and nodes for name, nodes in publishers)
 
 
 def one_stop(command, node, topic):
-    """Start the simulator, wait until it publishes, Ctrl-C it: (s to leave the graph, s to end,
-    killed: whether the timeout's SIGKILL ended it)."""
+    """Start the simulator, wait until it has registered `topic`, Ctrl-C it: (s to leave the
+    graph, s to end, killed: whether the timeout's SIGKILL ended it)."""
     process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                start_new_session=True)
     try:
