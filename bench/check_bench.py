@@ -30,6 +30,7 @@ import time
 import rospkg
 
 from course_common.processes import exit_on_terminate
+from course_testing.processes import busy_core
 from course_testing.verdicts import masked_figures
 
 LABS = ('move_turtlebot3', 'ros_exercises', 'my_turtle')
@@ -87,10 +88,6 @@ def checks_after_a_fix(lab, package, source, python_path):
     return [('fails to build', ) + failing, ('after the fix', ) + after]
 
 
-def busy():
-    return subprocess.Popen(['/usr/bin/python3', '-c', 'while True: pass'])
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('--before', metavar='REV', help='course_grader at this git revision too, in turn')
@@ -121,8 +118,7 @@ def main():
                 one_check(lab, package, path)
             for _ in range(args.rounds):
                 for machine in machines:
-                    spinner = busy() if machine != 'quiet' else None
-                    try:
+                    with busy_core(machine != 'quiet'):
                         for build, path in builds:
                             if args.cold and build == 'after':
                                 shutil.rmtree(os.path.join(cache, lab), ignore_errors=True)
@@ -133,10 +129,6 @@ def main():
                                 seen.setdefault((lab, what), set()).add(tuple(judged))
                                 print('%s %s %s %s: %.1f s, %d / %d passed' % (lab, machine, build, what, seconds, sum(
                                     1 for v in judged if v[1]), len(judged)), file=sys.stderr, flush=True)
-                    finally:
-                        if spinner:
-                            spinner.kill()
-                            spinner.wait()
     print('rounds: %d; load average at the end %s' % (args.rounds, ' '.join('%.1f' % x for x in os.getloadavg())))
     print()
     print('| lab | machine | build | wall, median (min - max) | same verdicts in every run |')

@@ -24,10 +24,10 @@ import time
 
 import rosgraph
 
-from check_bench import busy
 from course_checks.robot import left_the_graph
 from course_common.processes import stop_process_group
 from course_common.waiting import wait_until
+from course_testing.processes import busy_core
 from fake_tb3_bench import start_master
 
 # Each simulator: its rosrun command, its node's name, a topic it registers once it runs.
@@ -89,14 +89,9 @@ def main():
     try:
         for _ in range(args.rounds):
             for machine in ('quiet', 'one busy process'):
-                hog = busy() if machine != 'quiet' else None
-                try:
+                with busy_core(machine != 'quiet'):
                     for name, (command, node, topic) in SIMULATORS.items():
                         stops[name, machine].append(one_stop(command, node, topic))
-                finally:
-                    if hog:
-                        hog.kill()
-                        hog.wait()
     finally:
         stop_process_group(core, STOP_TIMEOUT)
     print('| simulator | machine | leaves the graph | process ended | killed | met |')

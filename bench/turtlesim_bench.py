@@ -35,7 +35,7 @@ import rosgraph
 import rospy
 
 from course_common.processes import free_port, stop_process_group
-from course_testing.processes import build_environment
+from course_testing.processes import build_environment, busy_core
 from course_common.waiting import wait_until
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn
@@ -145,16 +145,13 @@ class SideBySide:
         others = [node[0] for key, node in self.nodes.items() if key != (build, turtles)]
         for other in others:
             os.kill(other, signal.SIGSTOP)
-        hog = subprocess.Popen([sys.executable, '-c', 'while True: pass']) if busy else None
-        jitter = subprocess.Popen([sys.executable, os.path.abspath(__file__), '--sleep-loop', str(self.window)],
-                                  stdout=subprocess.PIPE, universal_newlines=True)
         try:
-            rate, p99, worst, cpu = measure(pid, '/%s_%d/%s/pose' % (build, turtles, last), self.window)
-            lateness = float(jitter.communicate()[0])
+            with busy_core(busy):
+                jitter = subprocess.Popen([sys.executable, os.path.abspath(__file__), '--sleep-loop',
+                                           str(self.window)], stdout=subprocess.PIPE, universal_newlines=True)
+                rate, p99, worst, cpu = measure(pid, '/%s_%d/%s/pose' % (build, turtles, last), self.window)
+                lateness = float(jitter.communicate()[0])
         finally:
-            if hog is not None:
-                hog.kill()
-                hog.wait()
             for other in others:
                 os.kill(other, signal.SIGCONT)
         row = (round_number, 'one busy process' if busy else 'quiet', turtles, build, os.getloadavg()[0],

@@ -4,8 +4,6 @@ scan as avoid_obstacle.py does (0.5 m/s while the front beam reads more than 0.5
 first answer kept back 50 ms as a busy machine keeps a node from the processor, stops the robot at
 the same place at any real-time factor and with a core kept busy beside it; while no node answers,
 the clock runs no faster than real time."""
-import subprocess
-import sys
 import time
 import unittest
 
@@ -16,9 +14,9 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 
-from course_common.processes import stop_process_group
 from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import measurement_window, wait_until
+from course_testing.processes import busy_core
 
 # The wall's face is at x = 2.0 and the laser 0.032 m behind base_footprint: the front beam reads
 # 2.032 - x. Answered at once, every scan finds the robot 0.1 m (0.5 m/s for a scan period of
@@ -63,16 +61,10 @@ class LockStepTest(unittest.TestCase):
         self.responder.answering = False
 
     def test_answered_scans_stop_the_robot_at_the_same_place(self):
-        busy = None
-        if rospy.get_param('~busy_core'):
-            busy = subprocess.Popen([sys.executable, '-c', 'while True: pass'], start_new_session=True)
-        try:
+        with busy_core(rospy.get_param('~busy_core')):
             self.responder.answering = True
             wait_until(lambda: self.odom.latest().twist.twist.linear.x > 0, 30, 'the robot driving')
             wait_until(lambda: self.odom.latest().twist.twist.linear.x == 0, 60, 'the robot stopped')
-        finally:
-            if busy:
-                stop_process_group(busy)
         self.assertAlmostEqual(self.odom.latest().pose.pose.position.x, STOP_X, delta=0.001)
 
     def test_unanswered_scans_let_the_clock_run_no_faster_than_real_time(self):

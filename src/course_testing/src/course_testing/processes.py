@@ -1,4 +1,5 @@
 """Starting, driving and stopping what a test, a benchmark or the tour runs beside the user's programs."""
+import contextlib
 import os
 import pty
 import select
@@ -21,6 +22,19 @@ def ignored_signals(status_text):
     """The signal numbers a /proc/PID/status text (its SigIgn line) says the process ignores."""
     mask = next(int(line.split()[1], 16) for line in status_text.splitlines() if line.startswith('SigIgn:'))
     return {number for number in range(1, 65) if mask & (1 << (number - 1))}
+
+
+@contextlib.contextmanager
+def busy_core(wanted=True):
+    """For the block, a process that keeps one core busy (none when not wanted): what a test or a
+    bench must hold beside, since the course's machines have two cores shared with other work."""
+    process = (subprocess.Popen(['/usr/bin/python3', '-c', 'while True: pass'], start_new_session=True,
+                                stderr=subprocess.DEVNULL) if wanted else None)   # no KeyboardInterrupt's traceback
+    try:
+        yield
+    finally:
+        if process:
+            stop_process_group(process)
 
 
 def build_environment(devel):
