@@ -3,6 +3,7 @@ headless, with pictures of page elements as RGB arrays."""
 import io
 import os
 import shutil
+import tempfile
 
 import numpy as np
 
@@ -15,7 +16,9 @@ def can_run_browser():
 
 
 def start_browser(width=1300, height=1000):
-    """A headless chromium (selenium WebDriver). quit() it when done: that stops chromium too."""
+    """A headless chromium (selenium WebDriver). quit() it when done: that stops chromium too, and
+    removes the temporary folder chromium was given (chromium leaves its socket's folder behind
+    when chromedriver ends it: one in /tmp for each browser a test started)."""
     from selenium import webdriver
     from selenium.webdriver.chrome.service import Service
     options = webdriver.ChromeOptions()
@@ -26,7 +29,24 @@ def start_browser(width=1300, height=1000):
                      '--window-size=%d,%d' % (width, height), '--force-device-scale-factor=1',
                      '--disable-background-timer-throttling', '--disable-renderer-backgrounding'):
         options.add_argument(argument)
-    return webdriver.Chrome(service=Service(executable_path=CHROMEDRIVER), options=options)
+    # In the system's temporary folder, not under a TMPDIR of the caller's: a socket's path must
+    # stay under 108 characters.
+    scratch = tempfile.mkdtemp(prefix='course-browser-', dir='/tmp')
+    try:
+        browser = webdriver.Chrome(service=Service(executable_path=CHROMEDRIVER,
+                                                   env=dict(os.environ, TMPDIR=scratch)), options=options)
+    except BaseException:
+        shutil.rmtree(scratch, ignore_errors=True)
+        raise
+    quit_browser = browser.quit
+
+    def quit_and_clean():
+        try:
+            quit_browser()
+        finally:
+            shutil.rmtree(scratch, ignore_errors=True)
+    browser.quit = quit_and_clean
+    return browser
 
 
 def element_pixels(element, border=1):
