@@ -50,6 +50,9 @@ LOGS="$BASE/build/test_logs"
 rm -rf "$RESULTS" "$LOGS"
 mkdir -p "$RESULTS/pytest" "$LOGS"
 export DISPLAY=   # the tests start their own Xvfb where they need a screen
+# The steps' ROS home: their logs, rostest's pid files, the checks they run and their pictures
+# (course_testing.pictures) stay with this run's logs, not in the user's ~/.ros.
+export ROS_HOME="$LOGS/ros_home"
 
 step_failures=()
 expected=()   # result files the steps must write, each with at least one test case

@@ -21,6 +21,8 @@ def terminal_environment(**exported):
     """The environment of a new terminal (nothing inherited but HOME and a plain PATH) that exports
     `exported` and then sources devel/setup.bash."""
     shell = {'HOME': os.environ.get('HOME', '/tmp'), 'PATH': '/usr/local/bin:/usr/bin:/bin'}
+    if 'ROS_HOME' in os.environ:   # ./test.sh's: the masters' logs stay with the run's
+        shell['ROS_HOME'] = os.environ['ROS_HOME']
     shell.update(exported)
     output = subprocess.run(['env', '-i'] + ['%s=%s' % item for item in shell.items()]
                             + ['bash', '-c', 'source "$1" >/dev/null && env -0', 'bash',

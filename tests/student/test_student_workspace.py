@@ -48,8 +48,10 @@ class Student:
         self.started = []
 
     def _argv(self, commands, source=True):
+        # ROS_HOME as a user's own terminal has it (HOME/.ros): rospack looks up the home of the
+        # passwd entry, not HOME, and would write its caches into the home of whoever runs the tests.
         shell = {'HOME': self.home, 'PATH': self.other_python + ':/usr/local/bin:/usr/bin:/bin',
-                 'LANG': 'C.UTF-8'}
+                 'LANG': 'C.UTF-8', 'ROS_HOME': os.path.join(self.home, '.ros')}
         setup = 'source %s/devel/setup.bash\n' % self.workspace if source else ''
         return (['env', '-i'] + ['%s=%s' % item for item in shell.items()]
                 + ['bash', '-c', setup + commands])

@@ -23,8 +23,9 @@ class GradeAsInstalledTest(unittest.TestCase):
     @staticmethod
     def bare_shell(home):
         """A teacher's shell before any workspace is sourced: built in it, the install space's
-        setup.bash chains to Debian's ROS only, not to this workspace's devel space."""
-        return {'HOME': home, 'PATH': '/usr/bin:/bin'}
+        setup.bash chains to Debian's ROS only, not to this workspace's devel space. Its ROS_HOME is
+        in HOME, as a teacher's own is (rospack takes the passwd entry's home, not HOME)."""
+        return {'HOME': home, 'PATH': '/usr/bin:/bin', 'ROS_HOME': os.path.join(home, '.ros')}
 
     def test_the_installed_grader_grades_a_moodle_download_then_regrades_it(self):
         """The name as Moodle wrote it and its id in the reports, then what changed since the first

@@ -19,6 +19,7 @@ from course_checks.verdict import Verdict
 from course_common.waiting import wait_until
 from course_grader import reports, results, rubric
 from course_testing.browser import element_pixels, save_pixels, start_browser
+from course_testing.pictures import picture_folder
 import replay_bags
 
 LASER_RED = np.array([230, 20, 20])
@@ -35,7 +36,7 @@ class ReplayInBrowser(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.out = tempfile.mkdtemp(prefix='replay-report-')
-        cls.shots = os.environ.get('REPLAY_SCREENSHOTS') or tempfile.mkdtemp(prefix='replay-shots-')
+        cls.shots = os.environ.get('REPLAY_SCREENSHOTS') or picture_folder('course_grader', 'replay_in_browser')
         os.makedirs(cls.shots, exist_ok=True)
         print('replay test: screenshots in %s' % cls.shots)
         replay_bags.write_class(cls.out)

@@ -7,6 +7,7 @@ import base64
 import io
 import json
 import os
+import shutil
 import signal
 import struct
 import subprocess
@@ -117,6 +118,7 @@ def page_frames(port, wanted, seconds=30):
 class ReplayTest(unittest.TestCase):
     def setUp(self):
         self.folder = tempfile.mkdtemp(prefix='replay-test-')
+        self.addCleanup(shutil.rmtree, self.folder, True)   # after tearDown has stopped the replay
         self.port = free_port()
         self.launch = None
 

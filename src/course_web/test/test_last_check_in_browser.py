@@ -34,12 +34,12 @@ class LastCheckInBrowserTest(ViewInBrowser):
     @classmethod
     def setUpClass(cls):
         cls.ros_home = tempfile.mkdtemp(prefix='course_web-ros_home-')
-        os.environ['ROS_HOME'] = cls.ros_home   # the view's, and the check's below
+        cls.view_environment = {'ROS_HOME': cls.ros_home}   # the view's, and the check's below
         super().setUpClass()
         package = rospkg.RosPack().get_path(LAB)
         checked = subprocess.run(['rosrun', 'course_grader', 'check', LAB, package], stdout=subprocess.PIPE,
                                  stderr=subprocess.STDOUT, universal_newlines=True, timeout=600,
-                                 env=dict(os.environ, COURSE_WEB_PORT=str(cls.port)))
+                                 env=dict(os.environ, ROS_HOME=cls.ros_home, COURSE_WEB_PORT=str(cls.port)))
         cls.output = checked.stdout
         assert checked.returncode == 0, cls.output[-3000:]
         checks = os.path.join(cls.ros_home, 'course_check')

@@ -2,7 +2,6 @@
 (for a unittest.TestCase's class), and how to read what the page shows."""
 import os
 import subprocess
-import tempfile
 import unittest
 
 import numpy as np
@@ -10,6 +9,7 @@ import rospy
 from selenium.webdriver.common.by import By
 
 from course_testing.browser import element_pixels, start_browser
+from course_testing.pictures import picture_folder
 from course_common.processes import free_port, port_open, stop_process_group
 from course_common.waiting import wait_until
 
@@ -29,17 +29,21 @@ def near_colour(pixels, col, row, colour, radius=2, tolerance=40):
 
 class ViewInBrowser(unittest.TestCase):
     """The view (node /course_web) and one browser tab on it; screenshots go to the directory in
-    $COURSE_WEB_SCREENSHOTS, else to a temporary one (logged)."""
+    $COURSE_WEB_SCREENSHOTS, else to the test's picture folder (logged). view_environment: what
+    the view's environment has besides this process's."""
+    view_environment = {}
 
     @classmethod
     def setUpClass(cls):
         rospy.init_node('course_web_browser_test')
-        cls.shots = os.environ.get('COURSE_WEB_SCREENSHOTS') or tempfile.mkdtemp(prefix='course_web-')
+        cls.shots = (os.environ.get('COURSE_WEB_SCREENSHOTS') or
+                     picture_folder('course_web', rospy.get_name().lstrip('/')))
         os.makedirs(cls.shots, exist_ok=True)
         rospy.loginfo('course_web test: screenshots in %s', cls.shots)
         cls.port = free_port()
         cls.view = subprocess.Popen(['rosrun', 'course_web', 'view', '__name:=course_web',
-                                     '_port:=%d' % cls.port], start_new_session=True)
+                                     '_port:=%d' % cls.port], start_new_session=True,
+                                    env=dict(os.environ, **cls.view_environment))
         wait_until(lambda: port_open(cls.port), 60, 'the view to listen on port %d' % cls.port, poll=0.2)
         cls.browser = start_browser()
         cls.browser.get('http://localhost:%d/' % cls.port)

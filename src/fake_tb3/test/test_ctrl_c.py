@@ -4,7 +4,6 @@ graph: whoever waits for it to leave (the grader, which then ends it at once) ha
 import os
 import signal
 import subprocess
-import tempfile
 import unittest
 
 import rosgraph
@@ -15,6 +14,7 @@ from nav_msgs.msg import Odometry
 from course_common.processes import stop_process_group
 from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import wait_until
+from course_testing.pictures import picture_folder
 
 NAME = '/ctrl_c_fake_tb3'
 
@@ -28,7 +28,7 @@ class CtrlCTest(unittest.TestCase):
 
     def test_the_picture_is_written_before_the_node_leaves_the_graph(self):
         rospy.init_node('ctrl_c_test')
-        picture = os.path.join(tempfile.mkdtemp(), 'at_ctrl_c.png')
+        picture = os.path.join(picture_folder('fake_tb3', 'ctrl_c'), 'at_ctrl_c.png')
         odom = TopicRecorder('/odom', Odometry)
         simulator = subprocess.Popen(['rosrun', 'fake_tb3', 'fake_tb3_node', '__name:=' + NAME.lstrip('/'),
                                       '_picture_png:=' + picture],

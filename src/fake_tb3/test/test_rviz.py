@@ -8,12 +8,12 @@ free), runs the rviz launch file against the test's master, screenshots the scre
 more if a signal killed it before it drew (course_testing.rviz); the test's log says so.
 """
 import os
-import tempfile
 import unittest
 
 import rospy
 import rostest
 
+from course_testing.pictures import picture_folder
 from course_testing.processes import LoggedLaunch
 from course_testing.rviz import rviz_until_drawn
 from course_testing.screen import VirtualScreen, red_pixels
@@ -23,7 +23,7 @@ class RvizTest(unittest.TestCase):
     def test_rviz_shows_the_scan_in_red(self):
         rospy.init_node('rviz_test')
         package = rospy.get_param('~launch_package', 'fake_tb3')
-        folder = tempfile.mkdtemp()
+        folder = picture_folder(package, rospy.get_name().lstrip('/'))
         screenshot = os.path.join(folder, 'rviz.png')
         starts = []
 

@@ -2,7 +2,6 @@
 """wander.py: 120 simulated seconds in turtlebot3_world, no collision, ground covered."""
 import math
 import os
-import tempfile
 
 import rospy
 import rostest
@@ -10,6 +9,7 @@ from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Trigger
 
 from course_checks.robot import largest_move, node_names, travelled
+from course_testing.pictures import picture_folder
 from move_turtlebot3_testing import LabTestCase, Launch, LoneNode
 
 CELL = 0.5  # m: side of the squares counted as visited
@@ -49,7 +49,7 @@ class WanderTest(LabTestCase):
         self.wander(noise=0.0)
 
     def test_wanders_turtlebot3_world_with_noise_and_draws_its_trail(self):
-        picture = os.path.join(tempfile.mkdtemp(), 'wander.png')
+        picture = os.path.join(picture_folder('move_turtlebot3', 'wander'), 'wander.png')
         self.wander(noise=0.01, picture_png=picture)
         save_picture = rospy.ServiceProxy('/fake_tb3/save_picture', Trigger)
         answer = save_picture()

@@ -2,7 +2,6 @@
 """The whole lab from one terminal: keys typed into teleop_chain.launch drive turtlesim's turtle."""
 import math
 import os
-import tempfile
 import unittest
 
 import rospy
@@ -11,6 +10,7 @@ from PIL import Image
 from std_srvs.srv import Trigger
 
 from course_checks.turtle import travelled, turned
+from course_testing.pictures import picture_folder
 from course_testing.processes import PtyProgram
 from course_common.waiting import wait_until
 from my_turtle_testing import hold_key, turtle1_poses
@@ -97,7 +97,7 @@ class TeleopChainTest(unittest.TestCase):
         self.assertNotIn('Traceback', self.chain.read_available())
 
     def check_canvas(self, trail):
-        path = rospy.get_param('~canvas_png') or os.path.join(tempfile.mkdtemp(), 'trail.png')
+        path = rospy.get_param('~canvas_png') or os.path.join(picture_folder('my_turtle', 'teleop_chain'), 'trail.png')
         rospy.set_param('/turtlesim_node/canvas_png', path)
         rospy.wait_for_service('/turtlesim_node/save_canvas', 10)
         reply = rospy.ServiceProxy('/turtlesim_node/save_canvas', Trigger)()
