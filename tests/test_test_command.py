@@ -437,3 +437,18 @@ def test_the_tests_that_need_root_run_only_as_root_and_a_line_says_so_elsewhere(
         else:
             assert code == 0 and said == ['test: tests/test_user_reaper.py needs root: not run here',
                                           'test: tests/network/test_two_hosts.py needs root: not run here'], output
+
+
+def test_the_steps_ros_home_is_the_runs_own_and_the_next_run_replaces_it(workspace):
+    # The steps' logs and pictures stay with the run's logs, not in the user's ~/.ros.
+    add_package(workspace, 'src/gamma', 'gamma', {'test_gamma.py': (
+        'import os\n\n\ndef test_ros_home():\n'
+        '    home = os.environ["ROS_HOME"]\n'
+        '    assert not os.path.exists(os.path.join(home, "left_by_the_last_run"))\n'
+        '    os.makedirs(home, exist_ok=True)\n'
+        '    open(os.path.join(home, "left_by_the_last_run"), "w").close()\n')})
+    for _ in range(2):
+        code, output = run_test_command(workspace, 'gamma')
+        assert (code, last_line(output)) == (0, '1 passed, 0 failed'), output
+    assert (workspace / 'build/test_logs/ros_home/left_by_the_last_run').exists()
+    assert not (workspace.parent / '.ros').exists()
