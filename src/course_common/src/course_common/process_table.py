@@ -49,13 +49,55 @@ def process_ids():
 
 def _read(pid, name):
     """/proc/PID/NAME's bytes; None once the process has gone (or if it is not ours to read)."""
+    return _read_proc('%d/%s' % (pid, name))
+
+
+def _read_proc(relative):
+    """/proc/RELATIVE's bytes; None if there is none (or if it is not ours to read)."""
     fd = proc_fd()
-    path = '%d/%s' % (pid, name) if fd is not None else '%s/%d/%s' % (PROC, pid, name)
+    path = relative if fd is not None else '%s/%s' % (PROC, relative)
     try:
         with open(path, 'rb', opener=functools.partial(os.open, dir_fd=fd)) as stream:
             return stream.read()
     except OSError:
         return None
+
+
+def listening_sockets(port):
+    """The inodes of the TCP sockets listening on `port` (on any address, IPv4 or IPv6) in this
+    network namespace; NoProcessTable where there is no /proc to read them from."""
+    ipv4 = _read_proc('net/tcp')
+    if ipv4 is None:
+        raise NoProcessTable('no process table here to read net/tcp from')
+    inodes = set()
+    for table in (ipv4, _read_proc('net/tcp6') or b''):   # no tcp6 without IPv6
+        for line in table.splitlines()[1:]:
+            fields = line.split()   # sl local_address rem_address st ... uid timeout inode
+            if len(fields) > 9 and fields[3] == b'0A' and int(fields[1].rsplit(b':', 1)[1], 16) == port:
+                inodes.add(int(fields[9]))
+    return inodes
+
+
+def socket_inodes(pid):
+    """The inodes of the sockets `pid` holds open: empty once it has gone (or if it is not ours to read)."""
+    fd = proc_fd()
+    try:
+        folder = os.open('%d/fd' % pid if fd is not None else '%s/%d/fd' % (PROC, pid),
+                         os.O_RDONLY | os.O_DIRECTORY, dir_fd=fd)
+    except OSError:
+        return set()
+    inodes = set()
+    try:
+        for name in os.listdir(folder):
+            try:
+                target = os.readlink(name, dir_fd=folder)
+            except OSError:   # closed meanwhile
+                continue
+            if target.startswith('socket:['):
+                inodes.add(int(target[len('socket:['):-1]))
+    finally:
+        os.close(folder)
+    return inodes
 
 
 def parent_of(pid):

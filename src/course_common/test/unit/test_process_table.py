@@ -1,10 +1,14 @@
-"""The processes found in /proc by parent, user and mark, and stopped wherever they went."""
+"""The processes found in /proc by parent, user and mark, and stopped wherever they went; whose socket
+listens on a port."""
 import os
 import signal
+import socket
 import subprocess
 
-from course_common.process_table import (command_line, descendants, marked_processes, new_mark, stop_marked,
-                                          user_processes, with_mark)
+import pytest
+
+from course_common.process_table import (command_line, descendants, listening_sockets, marked_processes, new_mark,
+                                          socket_inodes, stop_marked, user_processes, with_mark)
 from course_common.waiting import wait_until
 
 
@@ -51,3 +55,33 @@ def test_the_processes_of_a_user_are_found_but_not_the_dead_ones():
     assert command_line(sleeper.pid) == '%d ' % sleeper.pid   # a zombie has no command line left
     sleeper.wait()
     assert command_line(sleeper.pid) == '%d (gone)' % sleeper.pid
+
+
+def test_the_socket_listening_on_a_port_is_found_among_its_processs_own():
+    with socket.socket() as server:
+        server.bind(('127.0.0.1', 0))
+        server.listen()
+        port = server.getsockname()[1]
+        listening = listening_sockets(port)
+        assert len(listening) == 1 and listening <= socket_inodes(os.getpid())
+        sleeper = subprocess.Popen(['sleep', '60'])
+        try:
+            assert not listening & socket_inodes(sleeper.pid)
+        finally:
+            sleeper.kill()
+            sleeper.wait()
+        assert socket_inodes(sleeper.pid) == set()   # gone
+    assert listening_sockets(port) == set()
+
+
+def test_a_socket_listening_on_ipv6_loopback_is_found_too():
+    if not socket.has_ipv6 or not os.path.exists('/proc/net/tcp6'):
+        pytest.skip('no IPv6 on this machine')
+    with socket.socket(socket.AF_INET6) as server:
+        try:
+            server.bind(('::1', 0))
+        except OSError:
+            pytest.skip('IPv6 without a loopback address on this machine')
+        server.listen()
+        assert listening_sockets(server.getsockname()[1]) <= socket_inodes(os.getpid())
+        assert len(listening_sockets(server.getsockname()[1])) == 1

@@ -1,6 +1,7 @@
 """Where /proc is not mounted (a chroot): the processes found through a descriptor of /proc handed
 down, or a sentence saying that none can be stopped, never a silent empty table."""
 import os
+import socket
 import subprocess
 
 import pytest
@@ -44,3 +45,22 @@ def test_a_descriptor_of_proc_handed_down_finds_and_stops_the_users_processes(no
     finally:
         sleeper.kill()
         os.close(handed_down)
+
+
+def test_whose_socket_listens_on_a_port_read_through_a_descriptor_handed_down_or_an_error(no_proc, monkeypatch):
+    with socket.socket() as server:
+        server.bind(('127.0.0.1', 0))
+        port = server.getsockname()[1]
+        with pytest.raises(process_table.NoProcessTable):
+            process_table.listening_sockets(port)
+        assert process_table.socket_inodes(os.getpid()) == set()
+        handed_down = os.open('/proc', os.O_RDONLY | os.O_DIRECTORY)
+        try:
+            monkeypatch.setenv(process_table.PROC_FD_VARIABLE, str(handed_down))
+            assert process_table.listening_sockets(port) == set()   # bound, not listening yet
+            server.listen()
+            listening = process_table.listening_sockets(port)
+            assert len(listening) == 1 and listening <= process_table.socket_inodes(os.getpid())
+            assert not listening & process_table.socket_inodes(os.getppid())
+        finally:
+            os.close(handed_down)

@@ -25,7 +25,7 @@ from concurrent.futures import ThreadPoolExecutor
 from course_common import sim_record
 from course_checks.launch import Launch
 from course_grader import bags, feedback, labs, results, rubric as rubrics, wall_limit
-from course_common.process_table import UserReaper, stop_user
+from course_common.process_table import NoProcessTable, UserReaper, listening_sockets, socket_inodes, stop_user
 from course_common.processes import together
 from course_common.waiting import poll_until
 from course_grader.results import Verdict
@@ -339,6 +339,10 @@ def core_parameters():
     return {'/rosversion': version + '\n', '/rosdistro': distro + '\n'}
 
 
+# Master.ready's wait: our rosmaster ended before it listened, or another program listens on its port.
+ENDED, TAKEN = 'ended', 'taken'
+
+
 class Master:
     """A ROS master of our own on a free port: rosmaster alone (roscore's roslaunch and rosout
     cost a second at the start and more at the end, and nothing of the grading reads /rosout),
@@ -348,7 +352,9 @@ class Master:
     def __init__(self, log_path):
         from course_common.processes import free_port
         self.port = free_port()
-        self.uri = 'http://localhost:%d' % self.port
+        # 127.0.0.1, not localhost: localhost may be ::1 first, a port of its own that anyone may
+        # listen on while our master holds the IPv4 one.
+        self.uri = 'http://127.0.0.1:%d' % self.port
         self.process = Launch(['rosmaster', '--core', '-p', str(self.port)], log_path)
 
     def ready(self):
@@ -356,22 +362,40 @@ class Master:
         import rospy
         os.environ['ROS_MASTER_URI'] = self.uri
         master = rosgraph.Master('/course_grader')
-        if not poll_until(lambda: self.process.ended() or self._answers(master), 60, poll=0.05) \
-                or self.process.ended():
-            raise RuntimeError('the ROS master did not start on port %d' % self.port)
+        answering = poll_until(lambda: self._answering(master), 60, poll=0.05)
+        if answering != self.process.process.pid:
+            raise RuntimeError('the ROS master did not start on port %d%s' % (
+                self.port, ' (another program took the port first)' if answering == TAKEN else ''))
         master.setParam('/run_id', str(uuid.uuid1()))   # as roscore sets it (roslaunch reads it)
         for name, value in core_parameters().items():   # the student's roslaunch does not set them
             master.setParam(name, value)
         master.setParam('/use_sim_time', False)
         rospy.init_node('course_grader', disable_signals=True)
 
-    @staticmethod
-    def _answers(master):
+    def _answering(self, master):
+        """Our rosmaster's process id once it answers on the port; None until then; ENDED, TAKEN.
+
+        The port was free when chosen, not reserved: a program that listens there first (the
+        student's build reads the port on rosmaster's command line and starts a master of its own,
+        or another grading on this machine does) would answer too, and what it answers, its process
+        id included, is its own to say. So the socket that listens on the port must be one our
+        process holds (the kernel's word); then no other program can listen there. Where the
+        kernel's table cannot be read (no /proc), the answer's process id is all there is."""
+        if self.process.ended():
+            return ENDED
         try:
-            master.getPid()
-            return True
+            listening = listening_sockets(self.port)
+        except NoProcessTable:
+            listening = None
+        if listening is not None:
+            if not listening:
+                return None
+            if listening - socket_inodes(self.process.process.pid):
+                return TAKEN
+        try:
+            return master.getPid()
         except Exception:   # not up yet
-            return False
+            return None
 
     def stop(self):
         import rospy

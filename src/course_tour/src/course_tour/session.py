@@ -12,7 +12,7 @@ import os
 import rosgraph
 import rospy
 
-from course_common.process_table import new_mark, stop_marked, with_mark
+from course_common.process_table import descendants, new_mark, stop_marked, with_mark
 from course_common.processes import free_port
 from course_common.waiting import wait_until
 from course_testing.processes import LoggedLaunch
@@ -59,11 +59,21 @@ class Session:
         self._master = Launched(['roscore', '-p', uri.rsplit(':', 1)[1]],
                                 os.path.join(self.log_dir, 'roscore.log'), self.env)
         master = rosgraph.Master('/course_tour')
-        wait_until(master.is_online, 30, what='the ROS master of the tour')
+        wait_until(lambda: self._ours_answers(master), 30, what='the ROS master of the tour')
         # roscore sets /run_id a moment after the master answers; `roslaunch --wait` waits for it.
         wait_until(lambda: master.hasParam('/run_id'), 30, what='roscore to set /run_id')
         rospy.init_node('course_tour', disable_signals=True)
         return self
+
+    def _ours_answers(self, master):
+        """The master on the port is our roscore's: the port was free when chosen, not reserved, and
+        a master another program started there meanwhile would answer too."""
+        if self._master.exited():
+            raise RuntimeError('roscore ended before its master answered:\n%s' % self._master.output()[-2000:])
+        try:
+            return master.getPid() in descendants(self._master.process.pid)
+        except Exception:   # not up yet, or no ROS master there
+            return False
 
     def __exit__(self, *exc):
         try:
