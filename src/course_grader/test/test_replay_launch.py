@@ -25,11 +25,12 @@ from geometry_msgs.msg import Twist, Vector3
 from nav_msgs.msg import Odometry
 from PIL import Image
 
-from course_common.processes import free_port, port_open
 from course_common import sim_record
 from course_common.sim_record import RecordReader, RecordWriter
 from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import wait_until
+from course_testing.processes import LoggedLaunch
+from course_web.ros_view import served_port
 from course_grader import bags
 from turtlesim.msg import Pose
 from turtlesim.srv import SetPen
@@ -119,32 +120,28 @@ class ReplayTest(unittest.TestCase):
     def setUp(self):
         self.folder = tempfile.mkdtemp(prefix='replay-test-')
         self.addCleanup(shutil.rmtree, self.folder, True)   # after tearDown has stopped the replay
-        self.port = free_port()
+        self.port = None
         self.launch = None
 
     def tearDown(self):
-        if self.launch and self.launch.poll() is None:
-            self.launch.send_signal(signal.SIGINT)
-            self.launch.wait(30)
+        if self.launch:
+            self.launch.stop(30)
 
     def replay(self, bag, *args):
-        self.launch = subprocess.Popen(['roslaunch', 'course_web', 'replay.launch', 'bag:=' + bag,
-                                        'port:=%d' % self.port] + list(args),
-                                       stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                       universal_newlines=True)
-        wait_until(lambda: self._serving(), 60, 'the view of the replay to serve its page', poll=0.2)
+        # The view on port 0, at the port it says: a port found free here could be taken before the
+        # view listens, and whatever listened there would answer for it (seen: a reset connection).
+        self.launch = LoggedLaunch(['roslaunch', 'course_web', 'replay.launch', 'bag:=' + bag, 'port:=0'] + list(args),
+                                   os.path.join(self.folder, 'replay.log'), os.environ)
+        self.port = wait_until(lambda: self._serving(), 60, 'the view of the replay to say where it serves', poll=0.2)
 
     def _serving(self):
-        # The view registers with the master before it listens: its port, not the graph, says it serves.
-        if port_open(self.port):
-            return True
-        self.assertIsNone(self.launch.poll(), 'roslaunch ended')
-        return False
+        self.assertFalse(self.launch.exited(), 'roslaunch ended:\n' + self.launch.output())
+        return served_port(self.launch.output())
 
     def stop(self):
         """Ctrl-C: the launch, the playback and the redraw end."""
-        self.launch.send_signal(signal.SIGINT)
-        output = self.launch.communicate(timeout=30)[0]
+        self.launch.stop(30)
+        output = self.launch.output()
         master = rosgraph.Master('/replay_test')
         wait_until(lambda: not ({'/fake_tb3', '/turtlesim', '/replay_play', '/course_web'} & {
             node for _, nodes in master.getSystemState()[0] for node in nodes}), 10, 'the replay to leave the graph')
@@ -199,7 +196,7 @@ class ReplayTest(unittest.TestCase):
         path = os.path.join(self.folder, 'notes.bag')
         with open(path, 'w') as stream:
             stream.write('not a bag')
-        launch = subprocess.run(['roslaunch', 'course_web', 'replay.launch', 'bag:=' + path, 'port:=%d' % self.port],
+        launch = subprocess.run(['roslaunch', 'course_web', 'replay.launch', 'bag:=' + path, 'port:=0'],
                                 stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                 universal_newlines=True, timeout=120)
         self.assertIn('replay: cannot read %s: This does not appear to be a bag file' % path, launch.stdout)

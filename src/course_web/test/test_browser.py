@@ -231,7 +231,7 @@ class BrowserTest(ViewInBrowser):
             subscribers = dict(master.getSystemState()[1])
             return not any('/course_web' in subscribers.get(topic, ()) for topic in ('/turtlesim/scene', '/odom', '/scan'))
         wait_until(let_go, 15, 'the view to unsubscribe from the simulators with no page left', poll=0.2)
-        self.assertEqual(stop_process_group(self.view, timeout=10), 0)
+        self.assertEqual(stop_process_group(self.view.process, timeout=10), 0)
         self.assertFalse(port_open(self.port))
 
 

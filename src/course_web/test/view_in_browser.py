@@ -1,7 +1,6 @@
-"""What the browser tests share: the view started on a free port and headless chromium on its page
+"""What the browser tests share: the view started on a port of its own and headless chromium on its page
 (for a unittest.TestCase's class), and how to read what the page shows."""
 import os
-import subprocess
 import unittest
 
 import numpy as np
@@ -10,8 +9,9 @@ from selenium.webdriver.common.by import By
 
 from course_testing.browser import element_pixels, start_browser
 from course_testing.pictures import picture_folder
-from course_common.processes import free_port, port_open, stop_process_group
+from course_testing.processes import LoggedLaunch
 from course_common.waiting import wait_until
+from course_web.ros_view import served_port
 
 TS_PX_PER_METER = 45
 TS_BACKGROUND = (69, 86, 255)
@@ -40,18 +40,19 @@ class ViewInBrowser(unittest.TestCase):
                      picture_folder('course_web', rospy.get_name().lstrip('/')))
         os.makedirs(cls.shots, exist_ok=True)
         rospy.loginfo('course_web test: screenshots in %s', cls.shots)
-        cls.port = free_port()
-        cls.view = subprocess.Popen(['rosrun', 'course_web', 'view', '__name:=course_web',
-                                     '_port:=%d' % cls.port], start_new_session=True,
-                                    env=dict(os.environ, **cls.view_environment))
-        wait_until(lambda: port_open(cls.port), 60, 'the view to listen on port %d' % cls.port, poll=0.2)
+        # On port 0, at the port it says: a port found free here could be taken before the view
+        # listens, and whatever listened there would answer for it.
+        cls.view = LoggedLaunch(['rosrun', 'course_web', 'view', '__name:=course_web', '_port:=0'],
+                                os.path.join(cls.shots, 'view.log'), dict(os.environ, **cls.view_environment))
+        cls.port = wait_until(lambda: served_port(cls.view.output()), 60,
+                              'the view to say where it serves (%s)' % cls.view.log_path, poll=0.2)
         cls.browser = start_browser()
         cls.browser.get('http://localhost:%d/' % cls.port)
 
     @classmethod
     def tearDownClass(cls):
         cls.browser.quit()
-        stop_process_group(cls.view)
+        cls.view.stop()
 
     def script(self, text):
         return self.browser.execute_script(text)

@@ -11,6 +11,7 @@ its name: the node that publishes its own ~scene) and whether fake_tb3 runs.
 """
 import asyncio
 import json
+import re
 import signal
 import sys
 import threading
@@ -257,6 +258,16 @@ class RosView:
             rospy.rostime.wallsleep(TB3_PUBLISH_PERIOD)
 
 
+# The view's line that says where its page is (with port 0, the port the system chose).
+SERVING = 'course_web: open http://%s:%d/ in a browser%s'
+
+
+def served_port(output):
+    """The port of the SERVING line in the view's output, None until it has said it."""
+    found = re.search(r'course_web: open http://[^/\s]+:(\d+)/ in a browser', output)
+    return int(found.group(1)) if found else None
+
+
 def main():
     rospy.init_node('course_web', disable_signals=True)  # Ctrl-C is the web loop's to handle
     if stop_hearing_clock():  # beside a simulator on simulated time: the view needs no ROS time
@@ -274,8 +285,8 @@ def main():
         sys.exit(1)
     view.start()
     shown = 'localhost' if host in ('0.0.0.0', '::', '127.0.0.1', '') else host
-    rospy.loginfo('course_web: open http://%s:%d/ in a browser%s' % (
-        shown, bound, ' (listening on every address of this machine)' if host in ('0.0.0.0', '::', '') else ''))
+    rospy.loginfo(SERVING % (shown, bound, ' (listening on every address of this machine)'
+                             if host in ('0.0.0.0', '::', '') else ''))
     loop = tornado.ioloop.IOLoop.current()
     for signal_number in (signal.SIGINT, signal.SIGTERM):
         asyncio.get_event_loop().add_signal_handler(signal_number, loop.stop)

@@ -104,3 +104,11 @@ class ServerTest(tornado.testing.AsyncTestCase):
         self.assertLess(stalled_page[0].frames_sent, 300)
         self.assertGreater(max(page.frames_sent for page in self.server.pages), 2900)
         stalled.close()
+
+
+def test_the_port_the_view_says_it_serves_on_is_read_back_from_its_output():
+    from course_web.ros_view import SERVING, served_port
+    said = '[INFO] [1796385147.248852]: ' + SERVING % ('localhost', 46587, '') + '\n'
+    assert served_port('started\n' + said) == 46587
+    assert served_port(SERVING % ('labserver', 8080, ' (listening on every address of this machine)')) == 8080
+    assert served_port('course_web: cannot listen on 127.0.0.1 port 0: ...') is None
