@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """The student's check (`rosrun course_grader check LAB PATH`) of the course's own model solutions,
-timed as a whole command, and its verdicts: each lab's check run in turn with course_grader as it
-was at git revision REV ("before", its package from `git archive`, first on the Python path) and as
-it is ("after"), each with nothing of the bench's beside it ("quiet") and beside a process that
-keeps one core busy. Prints the medians (min - max) of the wall times and whether every run gave
+timed as a whole command, and its verdicts: each lab's check run in turn with the workspace as it
+was at git revision REV ("before": the whole tree from `git archive`, built by tools/setup.sh in a
+folder of the bench's, about a minute) and as it is ("after"), each with nothing of the bench's
+beside it ("quiet") and beside a process that keeps one core busy. Each build has a ROS_HOME of its
+own in the bench's folder (its checks and its kept builds). Prints the medians (min - max) of the wall times and whether every run gave
 the same verdicts: each criterion's pass, points and sentence (its figures left out: times and
 distances measured vary from run to run). Run after `source tools/env.sh`:
 
@@ -36,14 +37,21 @@ from course_testing.verdicts import masked_figures
 LABS = ('move_turtlebot3', 'ros_exercises', 'my_turtle')
 
 
-def older_package(revision, folder):
-    """course_grader's Python package at `revision` in `folder`; the folder to put first on the path."""
+def older_workspace(revision, folder):
+    """The environment of the workspace at `revision`, built in `folder`/before (its devel sourced)."""
     root = subprocess.run(['git', 'rev-parse', '--show-toplevel'], stdout=subprocess.PIPE, text=True,
                           cwd=os.path.dirname(os.path.abspath(__file__)), check=True).stdout.strip()
-    archive = subprocess.run(['git', 'archive', revision, 'src/course_grader/src'], stdout=subprocess.PIPE,
-                             cwd=root, check=True).stdout
-    subprocess.run(['tar', '-x', '-C', folder], input=archive, check=True)
-    return os.path.join(folder, 'src', 'course_grader', 'src')
+    tree = os.path.join(folder, 'before')
+    os.makedirs(tree)
+    archive = subprocess.run(['git', 'archive', revision], stdout=subprocess.PIPE, cwd=root, check=True).stdout
+    subprocess.run(['tar', '-x', '-C', tree], input=archive, check=True)
+    built = subprocess.run([os.path.join(tree, 'tools', 'setup.sh')], env=dict(os.environ, COURSE_SKIP_INSTALL='1'),
+                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if built.returncode != 0:
+        sys.exit('check_bench: the workspace at %s does not build:\n%s' % (revision, built.stdout[-2000:]))
+    listing = subprocess.run(['bash', '-c', 'source "$1/tools/env.sh" && env -0', 'env', tree],
+                             stdout=subprocess.PIPE, check=True).stdout
+    return dict(entry.split('=', 1) for entry in listing.decode().split('\0') if '=' in entry)
 
 
 def verdicts(output):
@@ -56,10 +64,7 @@ def verdicts(output):
     return [(c['id'], c['passed'], c['points'], masked_figures(c['reason'] or '')) for c in result['criteria']]
 
 
-def one_check(lab, package, python_path):
-    env = dict(os.environ)
-    if python_path:
-        env['PYTHONPATH'] = python_path + os.pathsep + env.get('PYTHONPATH', '')
+def one_check(lab, package, env):
     started = time.monotonic()
     done = subprocess.run(['rosrun', 'course_grader', 'check', lab, package], env=env, stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, text=True)
@@ -74,17 +79,17 @@ def broken_copy(package, folder):
     return (copy, sources[0]) if sources else (None, None)
 
 
-def checks_after_a_fix(lab, package, source, python_path):
+def checks_after_a_fix(lab, package, source, env):
     """The check of the package with `source` broken (a compiler error on its first line), then
     the one after the fix: [(what, seconds, verdicts)]."""
     with open(source) as stream:
         fixed = stream.read()
     with open(source, 'w') as stream:
         stream.write('#error the student\'s mistake\n' + fixed)
-    failing = one_check(lab, package, python_path)
+    failing = one_check(lab, package, env)
     with open(source, 'w') as stream:
         stream.write(fixed)
-    after = one_check(lab, package, python_path)
+    after = one_check(lab, package, env)
     return [('fails to build', ) + failing, ('after the fix', ) + after]
 
 
@@ -100,12 +105,13 @@ def main():
     args = parser.parse_args()
     exit_on_terminate()   # a kill stops the busy process with the bench (its finally)
     src = os.path.dirname(os.path.realpath(rospkg.RosPack().get_path('course_grader')))
-    cache = os.path.join(rospkg.get_ros_home(), 'course_check', '.build')
     machines = ['quiet'] + ([] if args.quiet_only else ['one busy process'])
     with tempfile.TemporaryDirectory(prefix='check_bench_') as folder:
-        builds = [('after', None)]
+        builds = [('after', dict(os.environ))]
         if args.before:
-            builds.insert(0, ('before', older_package(args.before, folder)))
+            builds.insert(0, ('before', older_workspace(args.before, folder)))
+        for build, env in builds:
+            env['ROS_HOME'] = os.path.join(folder, build + '_ros_home')
         times, seen = {}, {}
         for lab in args.labs:
             package, source = os.path.join(src, lab), None
@@ -114,16 +120,17 @@ def main():
                 if package is None:
                     print('%s: no C++ file, no check after a fix' % lab, file=sys.stderr)
                     continue
-            for build, path in builds:   # warm-up
-                one_check(lab, package, path)
+            for build, env in builds:   # warm-up
+                one_check(lab, package, env)
             for _ in range(args.rounds):
                 for machine in machines:
                     with busy_core(machine != 'quiet'):
-                        for build, path in builds:
+                        for build, env in builds:
                             if args.cold and build == 'after':
-                                shutil.rmtree(os.path.join(cache, lab), ignore_errors=True)
-                            checks = (checks_after_a_fix(lab, package, source, path) if source else
-                                      [('',) + one_check(lab, package, path)])
+                                shutil.rmtree(os.path.join(env['ROS_HOME'], 'course_check', '.build', lab),
+                                              ignore_errors=True)
+                            checks = (checks_after_a_fix(lab, package, source, env) if source else
+                                      [('',) + one_check(lab, package, env)])
                             for what, seconds, judged in checks:
                                 times.setdefault((lab, machine, (build + ', ' + what).strip(', ')), []).append(seconds)
                                 seen.setdefault((lab, what), set()).add(tuple(judged))

@@ -161,14 +161,17 @@ def command_line(pid):
     return '%d %s' % (pid, command.rstrip(b'\0').replace(b'\0', b' ').decode(errors='replace'))
 
 
-def stop_processes(find, tries=50, pause=0.1):
+def stop_processes(find, seconds=5.0):
     """SIGKILL every process `find()` names (this one excepted), again until it names none (one may
-    fork meanwhile). Returns how many were stopped, each counted once (a killed one may be found
-    again while it exits)."""
+    fork meanwhile) or `seconds` have passed. Returns how many were stopped, each counted once (a
+    killed one may be found again while it exits). It looks again after 5 ms, then twice as long
+    each time up to 0.1 s: most are gone within milliseconds."""
     stopped = set()
-    for _ in range(tries):
+    deadline = time.monotonic() + seconds
+    pause = 0.005
+    while True:
         found = [pid for pid in find() if pid != os.getpid()]
-        if not found:
+        if not found or time.monotonic() > deadline:
             break
         for pid in found:
             try:
@@ -177,6 +180,7 @@ def stop_processes(find, tries=50, pause=0.1):
                 pass
         stopped.update(found)
         time.sleep(pause)
+        pause = min(2 * pause, 0.1)
     return len(stopped)
 
 

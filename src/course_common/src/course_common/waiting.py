@@ -55,17 +55,19 @@ def measurement_window(seconds, start=None):
 
 
 class Deadline:
-    """The end of a run that may last `seconds` of wall time."""
+    """The end of a run that may last `seconds` of wall time; its waits look every `poll` seconds."""
 
-    def __init__(self, seconds):
+    def __init__(self, seconds, poll=0.05):
         self.end = time.monotonic() + seconds
+        self.poll = poll
 
     def left(self, at_least=0.5):
         return max(at_least, self.end - time.monotonic())
 
-    def wait(self, condition, seconds=None, gave_up=None, poll=0.05):
+    def wait(self, condition, seconds=None, gave_up=None, poll=None):
         """wait_for condition() within the time left (and `seconds` at most, when given)."""
-        return wait_for(condition, self.left() if seconds is None else min(seconds, self.left()), gave_up, poll)
+        return wait_for(condition, self.left() if seconds is None else min(seconds, self.left()), gave_up,
+                        self.poll if poll is None else poll)
 
 
 def wait_for(condition, seconds, gave_up=None, poll=0.05):

@@ -347,7 +347,8 @@ class Master:
     """A ROS master of our own on a free port: rosmaster alone (roscore's roslaunch and rosout
     cost a second at the start and more at the end, and nothing of the grading reads /rosout),
     started at once so that it comes up while the student's package builds; ready() waits for it
-    and starts the grader's own rospy node on it."""
+    and starts the grader's own rospy node on it. The trusted side's programs started from now on
+    (the simulators prepared during the build) have its address."""
 
     def __init__(self, log_path):
         from course_common.processes import free_port
@@ -356,11 +357,11 @@ class Master:
         # listen on while our master holds the IPv4 one.
         self.uri = 'http://127.0.0.1:%d' % self.port
         self.process = Launch(['rosmaster', '--core', '-p', str(self.port)], log_path)
+        os.environ['ROS_MASTER_URI'] = self.uri
 
     def ready(self):
         import rosgraph
         import rospy
-        os.environ['ROS_MASTER_URI'] = self.uri
         master = rosgraph.Master('/course_grader')
         answering = poll_until(lambda: self._answering(master), 60, poll=0.05)
         if answering != self.process.process.pid:
@@ -417,14 +418,14 @@ def grade(rubric, package_dir, out_dir, scratch, student, student_user=None, onl
     deliver = deliver or (lambda result: None)
     discard_prepared = lambda: None   # noqa: E731 (what the lab prepared during the build, unused)
     try:
-        # The build on a thread of its own: the master comes up meanwhile, and the lab prepares its
-        # simulators (labs/<lab>.prepare: nothing of the student's runs during the build).
+        # The build on a thread of its own: meanwhile the lab prepares its simulators (labs/<lab>.prepare:
+        # nothing of the student's runs during the build) and the master comes up.
         with ThreadPoolExecutor(max_workers=1) as pool:
             building = pool.submit(build, session, scratch, build_cache and BuildCache(build_cache), build_jobs)
             try:
-                master.ready()
                 if hasattr(lab, 'prepare'):
                     discard_prepared = lab.prepare(session)
+                master.ready()
             finally:
                 overlay_env = building.result()
     except BuildFailed as error:

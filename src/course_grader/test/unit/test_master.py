@@ -30,6 +30,7 @@ def test_a_master_another_program_started_on_the_port_first_is_not_taken_for_our
                    'the other master')
         monkeypatch.setattr('course_common.processes.free_port', lambda: port)
         master = grading_session.Master(str(tmp_path / 'roscore.txt'))
+        assert os.environ['ROS_MASTER_URI'] == master.uri   # at once: the simulators prepared meanwhile have it
         try:
             with pytest.raises(RuntimeError) as failure:
                 master.ready()

@@ -69,8 +69,10 @@ class PreparedSimulator:
 
 
 class Simulators:
-    """The fake_tb3 of each run ahead: all of them while the package builds (prepare_all: nothing
-    of the student's runs then), or each while the run before stops."""
+    """The fake_tb3 of each run ahead: the first run's while the package builds (nothing of the
+    student's runs then), the others once the first run is under way (its node started: the rest of
+    the run leaves the processor mostly idle, where the build does not), or each while the run
+    before stops when they could not be started then."""
 
     def __init__(self, session, scripts):
         self.session = session
@@ -83,7 +85,7 @@ class Simulators:
             self.logs.pop(0)
 
     def prepare_all(self):
-        """Every run's fake_tb3 started now, each waiting for its run (as many as can start)."""
+        """Every run's fake_tb3 still to come started now, each waiting for its run."""
         while self.logs:
             self.ready.append(PreparedSimulator(self.session, self.logs[0]))
             self.logs.pop(0)
@@ -140,7 +142,9 @@ class Run:
         prepared = simulators.take()
         self.sim_log = prepared.log_name
         self.record = prepared.record
-        self.deadline = Deadline(session.rubric.limits['run_seconds'])
+        # Its waits read fake_tb3's record (a few new lines each time): cheap enough to look every
+        # 10 ms, and each of the run's seven waits then ends 20 ms sooner on average than at 50 ms.
+        self.deadline = Deadline(session.rubric.limits['run_seconds'], poll=0.01)
         self.watch = RobotWatch(record=self.record)
         if picture:
             sim_args['picture_png'] = session.picture(picture)
@@ -158,6 +162,14 @@ class Run:
             self.sim.stop(15)
             raise RuntimeError('the simulator did not start (see %s)' % self.sim_log)
         self.node = StudentNode(session, script)
+
+    def under_way(self):
+        """The student's node does its part: the simulators of the runs after this one start now
+        (Simulators), unless the sandbox has no process left for them (each run prepares its own then)."""
+        try:
+            self.simulators.prepare_all()
+        except OSError:
+            pass
 
     def not_running(self, expected):
         """An outcome for a node that did not do anything: expected, and why (hints)."""
@@ -230,6 +242,7 @@ def check_trajectory(session, simulators):
             failure = run.not_running(expected_rate)
             return run.judged({'trajectory_rate': failure,
                     'trajectory_circle': Verdict(False, 'not checked: %s published nothing' % run.node.name)})
+        run.under_way()   # the first run: the other runs' simulators start now
         start = watch.now()
         period = 2 * math.pi / abs(angular) if angular else 10.0
         watched = circle_c['periods'] * period + 2
@@ -391,11 +404,11 @@ CRITERIA = criteria_of(STATIC_CRITERIA, RUNS)
 
 
 def prepare(session):
-    """While the package builds: each run's fake_tb3 started and importing (half of its start),
+    """While the package builds: the first run's fake_tb3 started and importing (half of its start),
     then waiting for its run (PreparedSimulator). Returns what stops those no run took."""
     session.simulators = Simulators(session, [run.name for run in will_run(session, RUNS)])
     try:
-        session.simulators.prepare_all()
+        session.simulators.prepare_next()
     except OSError:
         pass   # no process left: each run prepares its own when it starts
     return session.simulators.stop
