@@ -196,14 +196,35 @@ class GradeExamplesTest(unittest.TestCase):
                          {criterion: sentence for criterion in ('trajectory_rate', 'trajectory_circle',
                                                                 'laser_data', 'avoid_stops', 'avoid_stays')})
 
+    def private_folders(self):
+        """TMPDIR and ROS_HOME of a check of the test's own, removed after the test."""
+        folder = tempfile.mkdtemp(prefix='check-test-')
+        self.addCleanup(shutil.rmtree, folder, True)
+        for name in ('tmp', 'ros_home'):
+            os.mkdir(os.path.join(folder, name))
+        return {'TMPDIR': os.path.join(folder, 'tmp'), 'ROS_HOME': os.path.join(folder, 'ros_home')}
+
+    def test_a_check_leaves_nothing_in_the_temporary_folder(self):
+        # Its session's folders, its scratch workspace, and genpy's folders for the messages of the
+        # replays' bags (removed by genpy at the check's exit).
+        folders = self.private_folders()
+        check = subprocess.run(['rosrun', 'course_grader', 'check', 'move_turtlebot3',
+                                os.path.join(EXAMPLES, 'move_turtlebot3', 'model')], stdin=subprocess.DEVNULL,
+                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                               env=dict(os.environ, **folders), timeout=300)
+        self.assertEqual(check.returncode, 0, check.stdout)
+        self.assertIn('check: total 14 / 14', check.stdout)
+        self.assertEqual(os.listdir(folders['TMPDIR']), [])
+
     def test_a_check_stopped_by_sigterm_leaves_nothing_running(self):
         # A student closes the terminal, or kills the check, while roscore and fake_tb3 run: the
         # session, in a session of its own, would go on without it.
         tag = new_mark('COURSE_GRADER_TEST')
+        folders = self.private_folders()
         check = subprocess.Popen(['rosrun', 'course_grader', 'check', 'move_turtlebot3',
                                   os.path.join(EXAMPLES, 'move_turtlebot3', 'model'), '--only', 'avoid_stops'],
                                  stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
-                                 stdin=subprocess.DEVNULL, env=with_mark(tag))
+                                 stdin=subprocess.DEVNULL, env=with_mark(tag, dict(os.environ, **folders)))
         try:
             wait_until(lambda: any('fake_tb3' in line for line in tagged_processes(tag)), 120,
                        'the check to start fake_tb3')
@@ -216,6 +237,7 @@ class GradeExamplesTest(unittest.TestCase):
         print(output)
         self.assertEqual(left, [])
         self.assertEqual(check.returncode, 128 + signal.SIGTERM, output)
+        self.assertEqual(os.listdir(folders['TMPDIR']), [])
 
 
 if __name__ == '__main__':
