@@ -4,9 +4,9 @@ timed as a whole command, and its verdicts: each lab's check run in turn with th
 was at git revision REV ("before": the whole tree from `git archive`, built by tools/setup.sh in a
 folder of the bench's, about a minute) and as it is ("after"), each with nothing of the bench's
 beside it ("quiet") and beside a process that keeps one core busy. Each build has a ROS_HOME of its
-own in the bench's folder (its checks and its kept builds). Prints the medians (min - max) of the wall times and whether every run gave
-the same verdicts: each criterion's pass, points and sentence (its figures left out: times and
-distances measured vary from run to run). Run after `source tools/env.sh`:
+own in the bench's folder (its checks and its kept builds). Prints the medians (min - max) of the
+wall times and whether every run gave the same verdicts: each criterion's pass, points and sentence
+(its figures left out: times and distances measured vary from run to run). Run after `source tools/env.sh`:
 
     bench/check_bench.py [--before REV] [--rounds N] [--labs move_turtlebot3 ros_exercises my_turtle] [--quiet-only]
 
