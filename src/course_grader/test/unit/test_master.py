@@ -2,16 +2,14 @@
 that listens on its port first (a master of another grading, or of the student's build), whatever
 it answers."""
 import os
-import subprocess
 import threading
 import xmlrpc.server
 
 import pytest
 import rosgraph
 
-from course_common.processes import free_port, stop_process_group
-from course_common.waiting import wait_until
 from course_grader import grading_session
+from course_testing.processes import other_master
 
 
 @pytest.fixture
@@ -20,27 +18,24 @@ def ros_environment(monkeypatch):
     monkeypatch.setenv('ROS_MASTER_URI', os.environ.get('ROS_MASTER_URI', 'http://localhost:11311'))
 
 
+def refused(master, port):
+    """ready() fails at once with the sentence, and our rosmaster is stopped."""
+    try:
+        with pytest.raises(RuntimeError) as failure:
+            master.ready()
+        assert str(failure.value) == ('the ROS master did not start on port %d (another program took the '
+                                      'port first)' % port)
+    finally:
+        master.process.stop(10)
+
+
 def test_a_master_another_program_started_on_the_port_first_is_not_taken_for_ours(tmp_path, monkeypatch,
                                                                                    ros_environment):
-    port = free_port()
-    other = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], stdout=subprocess.DEVNULL,
-                             stderr=subprocess.DEVNULL, start_new_session=True)
-    try:
-        wait_until(lambda: rosgraph.Master('/test', master_uri='http://localhost:%d' % port).is_online(), 30,
-                   'the other master')
+    with other_master() as port:
         monkeypatch.setattr('course_common.processes.free_port', lambda: port)
         master = grading_session.Master(str(tmp_path / 'roscore.txt'))
         assert os.environ['ROS_MASTER_URI'] == master.uri   # at once: the simulators prepared meanwhile have it
-        try:
-            with pytest.raises(RuntimeError) as failure:
-                master.ready()
-            assert str(failure.value) == ('the ROS master did not start on port %d (another program took the '
-                                          'port first)' % port)
-        finally:
-            master.process.stop(10)
-    finally:
-        stop_process_group(other)
-
+        refused(master, port)
 
 
 def test_a_program_on_the_port_that_answers_with_our_masters_process_id_is_not_taken_for_ours(
@@ -57,13 +52,7 @@ def test_a_program_on_the_port_that_answers_with_our_masters_process_id_is_not_t
         master = grading_session.Master(str(tmp_path / 'roscore.txt'))
         claimed['pid'] = master.process.process.pid
         assert rosgraph.Master('/test', master_uri=master.uri).getPid() == master.process.process.pid
-        try:
-            with pytest.raises(RuntimeError) as failure:
-                master.ready()
-            assert str(failure.value) == ('the ROS master did not start on port %d (another program took the '
-                                          'port first)' % port)
-        finally:
-            master.process.stop(10)
+        refused(master, port)
     finally:
         liar.shutdown()
         liar.server_close()

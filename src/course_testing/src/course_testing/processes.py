@@ -37,6 +37,23 @@ def busy_core(wanted=True):
             stop_process_group(process)
 
 
+@contextlib.contextmanager
+def other_master():
+    """For the block, a ROS master of another program's on a port of its own (yields the port):
+    what a session that chose that port must not take for its own."""
+    import rosgraph
+    from course_common.processes import free_port
+    port = free_port()
+    process = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL, start_new_session=True)
+    try:
+        wait_until(lambda: rosgraph.Master('/test', master_uri='http://127.0.0.1:%d' % port).is_online(), 30,
+                   'the other program\'s master')
+        yield port
+    finally:
+        stop_process_group(process)
+
+
 def build_environment(devel):
     """The environment a shell has after sourcing the setup.bash of another build of this
     workspace (its devel folder), with this process's master: to run that build's nodes beside

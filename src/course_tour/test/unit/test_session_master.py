@@ -1,23 +1,15 @@
 """The tour's own master: a master that another program started on the tour's port first is not
 taken for the tour's (the port was free when chosen, not reserved)."""
 import os
-import subprocess
 
 import pytest
-import rosgraph
 
-from course_common.processes import free_port, stop_process_group
-from course_common.waiting import wait_until
+from course_testing.processes import other_master
 from course_tour import session as tour_session
 
 
 def test_a_master_already_on_the_port_is_not_the_tours(tmp_path, monkeypatch):
-    port = free_port()
-    other = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], stdout=subprocess.DEVNULL,
-                             stderr=subprocess.DEVNULL, start_new_session=True)
-    try:
-        wait_until(lambda: rosgraph.Master('/test', master_uri='http://localhost:%d' % port).is_online(), 30,
-                   'the other master')
+    with other_master() as port:
         monkeypatch.setattr(tour_session, 'free_port', lambda: port)
         for name in ('ROS_MASTER_URI', 'COURSE_TOUR'):   # what the session sets in os.environ, restored
             monkeypatch.setenv(name, os.environ.get(name, ''))
@@ -27,5 +19,3 @@ def test_a_master_already_on_the_port_is_not_the_tours(tmp_path, monkeypatch):
         assert str(failure.value).startswith('roscore ended before its master answered:\n')
         assert 'another roscore/master is already running' in str(failure.value)
         session._master.stop()
-    finally:
-        stop_process_group(other)
