@@ -341,6 +341,8 @@ def core_parameters():
 
 # Master.ready's wait: our rosmaster ended before it listened, or another program listens on its port.
 ENDED, TAKEN = 'ended', 'taken'
+# Master._listener: the kernel's table names our rosmaster's socket, or cannot be read.
+OURS, UNKNOWN = 'ours', 'unknown'
 
 
 class Master:
@@ -384,19 +386,38 @@ class Master:
         kernel's table cannot be read (no /proc), the answer's process id is all there is."""
         if self.process.ended():
             return ENDED
-        try:
-            listening = listening_sockets(self.port)
-        except NoProcessTable:
-            listening = None
-        if listening is not None:
-            if not listening:
-                return None
-            if listening - socket_inodes(self.process.process.pid):
-                return TAKEN
+        listener = self._listener()
+        if listener is None or listener == TAKEN:
+            return listener
         try:
             return master.getPid()
         except Exception:   # not up yet
             return None
+
+    def _listener(self):
+        """Who listens on the port by the kernel's table: OURS, TAKEN (a socket our rosmaster does
+        not hold), None (no one), or UNKNOWN where there is no table to read."""
+        try:
+            listening = listening_sockets(self.port)
+        except NoProcessTable:
+            return UNKNOWN
+        if not listening:
+            return None
+        return TAKEN if listening - socket_inodes(self.process.process.pid) else OURS
+
+    def lost(self):
+        """None while the master is still the one ready() accepted; else what became of it. A node
+        of the submission can reach it, shut it down through its API and listen on the freed port
+        itself: what answers there then (who publishes what, the simulator's parameters) is not the
+        master's word. Where the kernel's table cannot be read, only the master's end is seen."""
+        if self.process.ended():
+            return 'the ROS master stopped'
+        listener = self._listener()
+        if listener == TAKEN:
+            return 'another program than the ROS master listened on its port'
+        if listener is None:
+            return 'the ROS master no longer listened on its port'
+        return None
 
     def stop(self):
         import rospy
@@ -449,10 +470,12 @@ def grade(rubric, package_dir, out_dir, scratch, student, student_user=None, onl
                     ROS_HOME=side.env['ROS_HOME'], PYTHONDONTWRITEBYTECODE='1', ROSCONSOLE_STDOUT_LINE_BUFFERED='1')
     error = None
     try:
-        if master.process.ended():   # a process of the build shut it down (it could reach it)
-            error = 'not run: the ROS master stopped during the build'
+        lost = master.lost()   # a process of the build could reach it
+        if lost:
+            error = 'not run: %s during the build' % lost
             discard_prepared()
         else:
+            session.master = master   # run_each asks it after each run
             outcomes.update(lab.run_checks(session))
         result = results.score(rubric, outcomes, student, error=error, pictures=session.pictures,
                                seconds=time.monotonic() - started)

@@ -3,12 +3,14 @@ that listens on its port first (a master of another grading, or of the student's
 it answers."""
 import os
 import threading
+import xmlrpc.client
 import xmlrpc.server
 
 import pytest
 import rosgraph
 
 from course_grader import grading_session
+from course_common.waiting import wait_until
 from course_testing.processes import other_master
 
 
@@ -56,3 +58,23 @@ def test_a_program_on_the_port_that_answers_with_our_masters_process_id_is_not_t
     finally:
         liar.shutdown()
         liar.server_close()
+
+
+def test_a_master_shut_down_through_its_api_is_lost_and_the_port_of_another_is_not_ours(tmp_path, monkeypatch,
+                                                                                         ros_environment):
+    master = grading_session.Master(str(tmp_path / 'roscore.txt'))
+    try:
+        wait_until(lambda: master.lost() is None, 30, 'our rosmaster listening')   # as ready() sees it
+        ours = grading_session.listening_sockets(master.port)
+        with monkeypatch.context() as table:   # the kernel's table as it would read
+            table.setattr(grading_session, 'listening_sockets', lambda port: ours | {1})   # another listener too
+            assert master.lost() == 'another program than the ROS master listened on its port'
+            table.setattr(grading_session, 'listening_sockets', lambda port: set())
+            assert master.lost() == 'the ROS master no longer listened on its port'
+        assert master.lost() is None
+        # What a node of the submission can do: it reaches the master and may shut it down.
+        xmlrpc.client.ServerProxy(master.uri).shutdown('/student', 'taken over')
+        wait_until(master.process.ended, 10, 'our rosmaster ended')
+        assert master.lost() == 'the ROS master stopped'
+    finally:
+        master.process.stop(10)

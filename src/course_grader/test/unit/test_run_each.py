@@ -100,3 +100,35 @@ def test_a_run_that_breaks_down_costs_its_own_criteria(tmp_path, capsys):
     assert outcomes['a'].reason.startswith("the run of first.launch broke down (RuntimeError: can't start new thread); "
                                            "the last lines first.launch printed: starting | forking")
     assert 'The sandbox ran out of processes' in outcomes['a'].reason
+
+
+class LostMaster:
+    """A session's master (grading_session.Master) that is lost once `after` has run."""
+
+    def __init__(self, ran, after):
+        self.ran, self.after = ran, after
+
+    def lost(self):
+        return 'the ROS master stopped' if self.after in self.ran else None
+
+
+def test_a_run_after_which_the_master_is_not_ours_costs_its_criteria_and_those_of_every_run_after():
+    ran = []
+    lost_session = session(ran=ran)
+    lost_session.master = LostMaster(ran, 'first')
+    outcomes = run_each(lost_session, runs(ran))
+    assert ran == ['first', 'stopped']   # the second is not run: its master would not be ours
+    said = {criterion: (verdict.passed, verdict.reason) for criterion, verdict in outcomes.items()}
+    judged = ('not judged: the ROS master stopped during the run of first.launch, before the grader stopped it '
+              '(a node can shut it down through its API and listen on its port)')
+    assert said == {'a': (False, judged), 'b': (False, judged),
+                    'c': (False, 'not run: the ROS master stopped during the run of first.launch')}
+
+
+def test_a_master_lost_in_the_last_run_costs_that_run_only():
+    ran = []
+    lost_session = session(ran=ran)
+    lost_session.master = LostMaster(ran, 'second')
+    outcomes = run_each(lost_session, runs(ran))
+    assert outcomes['a'].passed and outcomes['b'].passed
+    assert outcomes['c'].reason.startswith('not judged: the ROS master stopped during the run of second.py')

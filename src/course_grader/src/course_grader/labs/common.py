@@ -111,9 +111,16 @@ class StudentNode:
 def run_each(session, runs, **given):
     """Run each of `runs` (LabRun; its check gets the session and `given`): a run that breaks down
     (a submission that took every process or all memory of its sandbox, say) costs its own criteria
-    only, with the reason. With session.only, only the runs that judge that criterion (will_run)."""
+    only, with the reason; a run after which session.master (grading_session.Master) is not the one
+    the session started costs its criteria and those of every run after it. With session.only, only
+    the runs that judge that criterion (will_run)."""
     outcomes = {}
+    master_lost = None   # (what became of the session's master, during which run)
     for run in will_run(session, runs):
+        if master_lost:
+            outcomes.update({criterion_id: Verdict(False, 'not run: %s during the run of %s' % master_lost)
+                             for criterion_id in run.criteria})
+            continue
         started = time.monotonic()
         try:
             outcomes.update(run.check(session, **given))
@@ -135,6 +142,12 @@ def run_each(session, runs, **given):
             for criterion_id in run.criteria:
                 outcomes[criterion_id] = Verdict(False, reason)
         session.student_side.stop_all()   # nothing of this run's lives into the next
+        lost = session.master.lost() if getattr(session, 'master', None) else None
+        if lost:   # what the checks asked the master (who published, the simulator's settings) may be lies
+            master_lost = (lost, run.name)
+            reason = ('not judged: %s during the run of %s, before the grader stopped it (a node can shut '
+                      'it down through its API and listen on its port)' % master_lost)
+            outcomes.update({criterion_id: Verdict(False, reason) for criterion_id in run.criteria})
     return outcomes
 
 
