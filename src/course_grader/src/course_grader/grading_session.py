@@ -406,10 +406,13 @@ class Master:
         return TAKEN if listening - socket_inodes(self.process.process.pid) else OURS
 
     def lost(self):
-        """None while the master is still the one ready() accepted; else what became of it. A node
-        of the submission can reach it, shut it down through its API and listen on the freed port
-        itself: what answers there then (who publishes what, the simulator's parameters) is not the
-        master's word. Where the kernel's table cannot be read, only the master's end is seen."""
+        """None while the master is still the one ready() accepted and the grader's own node on it
+        runs; else what became of them. A node of the submission can reach both: shut the master
+        down through its API and listen on the freed port itself (what answers there then, who
+        publishes what, the simulator's parameters, is not the master's word), or shut the grader's
+        node down through its slave API (the grader's own publishers, the turn of laser_data say,
+        then send nothing). Where the kernel's table cannot be read, only the master's end is seen."""
+        import rospy
         if self.process.ended():
             return 'the ROS master stopped'
         listener = self._listener()
@@ -417,6 +420,8 @@ class Master:
             return 'another program than the ROS master listened on its port'
         if listener is None:
             return 'the ROS master no longer listened on its port'
+        if rospy.core.is_shutdown():
+            return "the grader's own ROS node was shut down"
         return None
 
     def stop(self):

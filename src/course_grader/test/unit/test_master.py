@@ -60,7 +60,7 @@ def test_a_program_on_the_port_that_answers_with_our_masters_process_id_is_not_t
         liar.server_close()
 
 
-def test_a_master_shut_down_through_its_api_is_lost_and_the_port_of_another_is_not_ours(tmp_path, monkeypatch,
+def test_a_master_shut_down_or_not_alone_on_its_port_and_a_grader_node_shut_down_are_lost(tmp_path, monkeypatch,
                                                                                          ros_environment):
     master = grading_session.Master(str(tmp_path / 'roscore.txt'))
     try:
@@ -72,6 +72,9 @@ def test_a_master_shut_down_through_its_api_is_lost_and_the_port_of_another_is_n
             table.setattr(grading_session, 'listening_sockets', lambda port: set())
             assert master.lost() == 'the ROS master no longer listened on its port'
         assert master.lost() is None
+        with monkeypatch.context() as grader:   # a node shut the grader's own node down (its slave API)
+            grader.setattr('rospy.core.is_shutdown', lambda: True)
+            assert master.lost() == "the grader's own ROS node was shut down"
         # What a node of the submission can do: it reaches the master and may shut it down.
         xmlrpc.client.ServerProxy(master.uri).shutdown('/student', 'taken over')
         wait_until(master.process.ended, 10, 'our rosmaster ended')

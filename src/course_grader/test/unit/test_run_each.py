@@ -119,8 +119,8 @@ def test_a_run_after_which_the_master_is_not_ours_costs_its_criteria_and_those_o
     outcomes = run_each(lost_session, runs(ran))
     assert ran == ['first', 'stopped']   # the second is not run: its master would not be ours
     said = {criterion: (verdict.passed, verdict.reason) for criterion, verdict in outcomes.items()}
-    judged = ('not judged: the ROS master stopped during the run of first.launch, before the grader stopped it '
-              '(a node can shut it down through its API and listen on its port)')
+    judged = ('not judged: the ROS master stopped during the run of first.launch (a node can do that through the '
+              'ROS APIs): what the grader saw of that run cannot be trusted')
     assert said == {'a': (False, judged), 'b': (False, judged),
                     'c': (False, 'not run: the ROS master stopped during the run of first.launch')}
 

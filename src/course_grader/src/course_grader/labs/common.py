@@ -111,11 +111,12 @@ class StudentNode:
 def run_each(session, runs, **given):
     """Run each of `runs` (LabRun; its check gets the session and `given`): a run that breaks down
     (a submission that took every process or all memory of its sandbox, say) costs its own criteria
-    only, with the reason; a run after which session.master (grading_session.Master) is not the one
-    the session started costs its criteria and those of every run after it. With session.only, only
+    only, with the reason; a run after which session.master (grading_session.Master) is lost (not
+    the one the session started, or the grader's own node shut down) costs its criteria and those
+    of every run after it. With session.only, only
     the runs that judge that criterion (will_run)."""
     outcomes = {}
-    master_lost = None   # (what became of the session's master, during which run)
+    master_lost = None   # (what became of the session's master or the grader's node, during which run)
     for run in will_run(session, runs):
         if master_lost:
             outcomes.update({criterion_id: Verdict(False, 'not run: %s during the run of %s' % master_lost)
@@ -143,10 +144,10 @@ def run_each(session, runs, **given):
                 outcomes[criterion_id] = Verdict(False, reason)
         session.student_side.stop_all()   # nothing of this run's lives into the next
         lost = session.master.lost() if getattr(session, 'master', None) else None
-        if lost:   # what the checks asked the master (who published, the simulator's settings) may be lies
+        if lost:   # what the master answered may be lies, what the grader's node sent may not have gone
             master_lost = (lost, run.name)
-            reason = ('not judged: %s during the run of %s, before the grader stopped it (a node can shut '
-                      'it down through its API and listen on its port)' % master_lost)
+            reason = ('not judged: %s during the run of %s (a node can do that through the ROS APIs): '
+                      'what the grader saw of that run cannot be trusted' % master_lost)
             outcomes.update({criterion_id: Verdict(False, reason) for criterion_id in run.criteria})
     return outcomes
 
