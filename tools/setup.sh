@@ -195,3 +195,8 @@ if ! wait $make_pid; then
     exit 1
 fi
 [ "$installed" = yes ] || { echo "setup: apt-get install failed (above)" >&2; exit 1; }
+# The course's Python compiled once: where nothing writes bytecode (PYTHONDONTWRITEBYTECODE, a
+# read-only tree: a grading's sandbox) every process would compile its modules again at its start
+# (20 - 70 ms of CPU for a simulator, a grading or a test node). An unchanged module is not compiled again.
+(cd "$ROOT" && /usr/bin/python3 -m compileall -q src/*/src src/compat/*/src "$BASE/devel/lib/python3") \
+    || { echo "setup: compiling the course's Python failed" >&2; exit 1; }
