@@ -1,6 +1,9 @@
 #!/usr/bin/env python3
-"""turtlesim with ~lock_step at 5x: while no node answers the poses with a velocity command, its
-clock runs no faster than real time; a node that answers each pose it hears lets it run faster."""
+"""turtlesim in lock step at 5x: while no node answers the poses with a velocity command, its
+clock runs no faster than real time; a node that answers each pose it hears lets it run faster.
+Started as the grader starts it (lock_step.test): the settings of its command line, not the
+parameters that say otherwise."""
+import os
 import time
 import unittest
 
@@ -8,6 +11,7 @@ import rospy
 import rostest
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Clock
+from std_srvs.srv import Trigger
 
 from course_common.topic_recorder import TopicRecorder
 from course_common.waiting import measurement_window
@@ -51,6 +55,14 @@ class LockStepTest(unittest.TestCase):
         self.responder.answering = True
         self.factor_over(0.5)   # the answers under way
         self.assertGreater(self.factor_over(2.0), 2.0)
+
+    def test_the_canvas_is_saved_where_the_command_line_says(self):
+        saved = rospy.ServiceProxy('/turtlesim/save_canvas', Trigger)()
+        self.addCleanup(lambda: os.path.exists(saved.message) and os.remove(saved.message))
+        self.assertTrue(saved.success, saved.message)
+        self.assertEqual(os.path.basename(saved.message), 'lock_step_canvas.png')
+        self.assertTrue(os.path.isfile(saved.message))
+        self.assertFalse(os.path.exists(os.path.join(os.path.dirname(saved.message), 'elsewhere.png')))
 
 
 if __name__ == '__main__':

@@ -28,18 +28,20 @@ def write_png(image, path):
 
 
 class CanvasOutputs:
-    """~save_canvas, ~canvas, and the canvas saved at shutdown when ~canvas_png was set at start."""
+    """~save_canvas, ~canvas, and the canvas saved at shutdown when ~canvas_png was set at start.
+    With `canvas_png` given (the command line's), it is where both write, and the parameter is not read."""
 
-    def __init__(self, snapshot):
+    def __init__(self, snapshot, canvas_png=None):
         self.snapshot = snapshot
-        self.png_at_shutdown = rospy.get_param('~canvas_png', '')
+        self.given_png = canvas_png
+        self.png_at_shutdown = canvas_png if canvas_png is not None else rospy.get_param('~canvas_png', '')
         self._service = rospy.Service('~save_canvas', Trigger, self.save_canvas)
         self.canvas_pub = rospy.Publisher('~canvas', Image, queue_size=1,
                                           subscriber_listener=_PublishOnConnect(self))
         self._timer = rospy.Timer(rospy.Duration(CANVAS_TOPIC_PERIOD), self._publish_canvas)
 
     def save_canvas(self, _req):
-        path = canvas_path(rospy.get_param('~canvas_png', ''))
+        path = canvas_path(self.given_png if self.given_png is not None else rospy.get_param('~canvas_png', ''))
         try:
             write_png(self.snapshot(), path)
         except (OSError, ValueError) as error:

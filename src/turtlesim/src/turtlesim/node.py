@@ -36,7 +36,7 @@ from std_srvs.srv import Empty, EmptyResponse
 from course_common import batched_writes, prompt_shutdown, sim_record_ros
 from course_common.request_queue import RequestQueue, Stopped
 from course_common.service_calls_ros import ServiceCallTopic
-from turtlesim import picture, shared_poll
+from turtlesim import command_line, picture, shared_poll
 from turtlesim.canvas_outputs import CanvasOutputs
 from turtlesim.holdings import (LOW_FILE_LIMIT, Holdings, capacity_note, open_file_count, open_file_limit,
                                 raise_open_file_limit, spawn_refusal)
@@ -176,7 +176,8 @@ class TurtlesimNode:
         for channel, value in zip(('r', 'g', 'b'), DEFAULT_BACKGROUND):
             if not rospy.has_param('~background_' + channel):
                 rospy.set_param('~background_' + channel, value)
-        self.ticks = make_ticks()
+        given = command_line.settings(rospy.myargv(sys.argv)[1:])
+        self.ticks = make_ticks(given)
         self.started_background = self.read_background()   # for the record's first entry
         self.world = World(RosLog, self.started_background, name_key=rospy.resolve_name)
         self.world_lock = threading.Lock()  # held while the world changes and while it is copied
@@ -197,7 +198,7 @@ class TurtlesimNode:
             self.service('spawn', Spawn, self.spawn),
             self.service('kill', Kill, self.kill),
         ]
-        self.canvas_outputs = CanvasOutputs(self.snapshot)
+        self.canvas_outputs = CanvasOutputs(self.snapshot, given.get('canvas_png'))
         self._tick_thread = threading.Thread(target=self._run_ticks, name='turtlesim-ticks', daemon=True)
 
     # --- parameters ---
@@ -440,7 +441,7 @@ def main():
     stop = _stop_on_signals()
     try:
         node = TurtlesimNode()
-    except ValueError as error:  # a parameter it cannot run with
+    except ValueError as error:  # a parameter or an option it cannot run with
         rospy.logfatal('turtlesim: %s' % error)
         sys.exit(1)
     node.start()

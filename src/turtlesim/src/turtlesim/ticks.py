@@ -102,8 +102,13 @@ class SimulatedTicks:
         return tick_ns / 1e9
 
 
-def make_ticks():
-    """The ticks the parameters ask for: /use_sim_time, ~real_time_factor, ~clock_rate, ~lock_step."""
+def make_ticks(given=None):
+    """The ticks the parameters ask for: /use_sim_time, ~real_time_factor, ~clock_rate, ~lock_step;
+    or, when `given` (command_line.settings) holds a real_time_factor, the simulated ticks it says,
+    whatever the parameters say."""
+    given = given or {}
+    if 'real_time_factor' in given:
+        return SimulatedTicks(given['real_time_factor'], given.get('clock_rate', 250.0), given.get('lock_step', False))
     if not rospy.get_param('/use_sim_time', False):
         return WallTicks()
     factor = rospy.get_param('~real_time_factor', 1.0)

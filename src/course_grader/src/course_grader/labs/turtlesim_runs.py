@@ -28,7 +28,7 @@ from course_common.processes import together
 
 MAX_TURTLESIMS = 3           # turtlesim nodes of one launch file started for it, at most
 MAX_PARAMS = 50              # of one turtlesim node's private parameters passed on, at most
-GRADERS_PARAMS = ('canvas_png', 'real_time_factor', 'clock_rate', 'lock_step')   # set by the grader alone
+GRADERS_PARAMS = ('canvas_png', 'real_time_factor', 'clock_rate', 'lock_step')   # given by the grader alone
 LAUNCHER = ['/usr/bin/python3', '-s', '-m', 'course_grader.turtlesim_launch']
 
 
@@ -151,16 +151,17 @@ class TurtlesimLaunch:
             pass
         for param, value in node['params'].items():
             rospy.set_param(name + '/' + param, value)
-        rospy.set_param(name + '/canvas_png', self.session.picture(picture) if picture else '')
+        # The grader's settings on turtlesim's command line: a parameter, any node could set before
+        # turtlesim reads it (the student's launch file starts beside it).
+        settings = ['--canvas-png', self.session.picture(picture) if picture else '']
         if real_time_factor is not None:
-            rospy.set_param(name + '/real_time_factor', float(real_time_factor))
-            rospy.set_param(name + '/lock_step', lock_step)
+            settings += ['--real-time-factor', str(float(real_time_factor))] + (['--lock-step'] if lock_step else [])
         namespace, base = rosgraph.names.namespace(name), name.rsplit('/', 1)[-1]
         executable = roslib.packages.find_node('turtlesim', 'turtlesim_node')[0]   # the course's (our environment)
         log = self.sim_log if not self.simulators else '%s_%d.txt' % (self.sim_log[:-4], len(self.simulators))
         record = self.session.record_path(log[:-4])
         launch = self.session.trusted([executable, '__name:=' + base, '__ns:=' + namespace]
-                                      + ['%s:=%s' % pair for pair in node['remaps']], log, record=record)
+                                      + ['%s:=%s' % pair for pair in node['remaps']] + settings, log, record=record)
         self.simulators[name] = (launch, None)
         self.records.add(record)
         self.recorded.append((record, name))
