@@ -18,7 +18,7 @@ Run after building, in the ROS environment (source tools/env.sh):
     bench/fake_tb3_bench.py [--quick] [--many] [--before REV [--rounds N]] [--profile-core TOP]
 --many: part 3 only. --profile-core TOP: instead, the TOP functions of the core alone by own time
 (cProfile). --before REV: each figure also of fake_tb3 as it was at git revision REV
-(its package from `git archive`, first on the Python path), before and after in turn, N rounds
+(its package and course_common's from `git archive`, first on the Python path), before and after in turn, N rounds
 (default 3), medians. It starts its own roscore on a free port and stops everything it started.
 """
 import argparse
@@ -247,8 +247,8 @@ def run_simulator(name, real_time_factor, robots, seconds, commands=((0.0, 0.5),
                   python_path=None):
     """Run fake_tb3 with `robots` (spawn dicts) at real_time_factor, every robot driven by
     `commands` (linear, angular) in turn, ten a second (one command: sent once), and measure for
-    `seconds` of wall time. python_path: a folder put first on the simulator's Python path (an
-    older fake_tb3 package).
+    `seconds` of wall time. python_path: folders put first on the simulator's Python path (an
+    older fake_tb3 package: older_package).
 
     Returns (achieved real-time factor, the lowest share of its due messages any topic got, CPU
     seconds the simulator used per simulated second: what the load of a shared machine does not
@@ -323,7 +323,7 @@ def grid_of_robots(count):
 
 
 def _environment(python_path):
-    """This process's environment, with python_path (if any) first on the Python path."""
+    """This process's environment, with python_path (if any: folders joined by os.pathsep) first on the Python path."""
     environment = dict(os.environ)
     if python_path:
         environment['PYTHONPATH'] = os.pathsep.join(
@@ -371,13 +371,14 @@ def _core_profile_json(quick, top):
 
 
 def older_package(revision, folder):
-    """fake_tb3's Python package as it was at git `revision`, unpacked under folder: the folder to
-    put first on the Python path (its worlds beside it, where it looks for them)."""
+    """fake_tb3's Python package as it was at git `revision`, and course_common's (its ROS layer's
+    batched writes and clock), unpacked under folder: what to put first on the Python path (the
+    worlds beside fake_tb3's, where it looks for them)."""
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    archive = subprocess.run(['git', 'archive', revision, 'src/fake_tb3'], cwd=root, check=True,
+    archive = subprocess.run(['git', 'archive', revision, 'src/fake_tb3', 'src/course_common'], cwd=root, check=True,
                              stdout=subprocess.PIPE).stdout
     subprocess.run(['tar', '-x', '-C', folder], input=archive, check=True)
-    return os.path.join(folder, 'src', 'fake_tb3', 'src')
+    return os.pathsep.join(os.path.join(folder, 'src', package, 'src') for package in ('fake_tb3', 'course_common'))
 
 
 SPAWN = {'name': 'tb3_0', 'model': 'burger', 'x_pos': -2.0, 'y_pos': -0.5, 'yaw': 0.0}
