@@ -113,8 +113,7 @@ def run_each(session, runs, **given):
     (a submission that took every process or all memory of its sandbox, say) costs its own criteria
     only, with the reason; a run after which session.master (grading_session.Master) is lost (not
     the one the session started, or the grader's own node shut down) costs its criteria and those
-    of every run after it. With session.only, only
-    the runs that judge that criterion (will_run)."""
+    of every run after it. With session.only, only the runs that judge that criterion (will_run)."""
     outcomes = {}
     master_lost = None   # (what became of the session's master or the grader's node, during which run)
     for run in will_run(session, runs):
