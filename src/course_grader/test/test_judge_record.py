@@ -109,6 +109,11 @@ class JudgeRecordTest(unittest.TestCase):
         # What laser_data's check asks: who else than the grader sent commands (the forger said it was the grader).
         self.assertEqual(self.from_record.command_senders(but=rospy.get_name()), senders)
         self.assertEqual(self.from_record.command_senders(but='/forger'), [])
+        # What laser_data's check judges from: the grader's turn applied, never the forger's command.
+        self.assertIsNone(self.from_record.first_command_of(rospy.get_name()))
+        applied = self.from_record.first_command_of('/forger')
+        self.assertEqual(applied, self.from_record.copy('commands')[0][0])
+        self.assertGreater(applied, 0.0)
 
 
 if __name__ == '__main__':

@@ -84,6 +84,15 @@ def printed_scans(blocks, scans, beams, needed):
     return Verdict(len(blocks) >= needed and not unmatched, seen)
 
 
+def since(turned, blocks, sent):
+    """(blocks, scans) to judge from the moment `turned` (simulated s) on: the (time sent, LaserScan)
+    scans stamped after it, and the (time read, values) blocks read once the first of those was
+    sent (a block read before can show only a scan of before)."""
+    sent = [(at, scan) for at, scan in sent if scan.header.stamp.to_sec() > turned]
+    first = sent[0][0] if sent else math.inf
+    return [(read, block) for read, block in blocks if read >= first], sent
+
+
 def shown_scans(blocks, sent, beams, window, window_scans=0):
     """Which scan each printed block shows, in order. For (time.monotonic() read, values) blocks and
     (time.monotonic() sent, LaserScan) scans, in the order sent: the index of the first scan after

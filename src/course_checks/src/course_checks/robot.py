@@ -80,6 +80,12 @@ class SimRecord:
         return sorted({command['sender'] for command in self.records.events('command')
                        if but is None or but not in command['nodes']})
 
+    def first_command_of(self, node):
+        """The simulated time at which fake_tb3 applied the first command that came from `node` (the
+        master's registration at the connection's other end), None if it applied none."""
+        return next((entry.sim_time for entry in self.records.entries('command')
+                     if node in entry.fields()['nodes']), None)
+
     def service_calls(self):
         return self.records.service_calls()
 
@@ -194,6 +200,13 @@ class RobotWatch:
         if self._record:
             return self._record.command_senders(but)
         return []
+
+    def first_command_of(self, node):
+        """The simulated time at which fake_tb3 applied the first command of `node`, None if it
+        applied none (the record only: None from the topics)."""
+        if self._record:
+            return self._record.first_command_of(node)
+        return None
 
     def copy(self, name):
         """What was recorded so far: 'poses', 'scans' or 'commands'."""

@@ -186,3 +186,42 @@ def test_a_block_read_before_its_last_value_is_not_yet_a_block():
         assert laser.timed_blocks(timed[:cut]) == [(11.0, ['1', '2', '3', '4', '5'])], cut
         assert laser.printed_blocks(lines[:cut]) == [['1', '2', '3', '4', '5']], cut
     assert laser.printed_blocks(lines[:23]) == [['1', '2', '3', '4', '5'], ['6', '7', '8', '9', '10']]
+
+
+def stamped(count):
+    """sent(count), each scan stamped with its simulated time (a scan every 0.2 simulated s)."""
+    scans = sent(count)
+    for i, (_, message) in enumerate(scans):
+        message.header.stamp.secs, message.header.stamp.nsecs = divmod(i * 200000000, 1000000000)
+    return scans
+
+
+def test_judged_from_the_turn_on_only_the_scans_after_it_and_blocks_read_since_the_first_of_them():
+    scans = stamped(10)                          # stamps 0.0, 0.2, ... 1.8 simulated s
+    blocks = [block(t + 0.001, message) for t, message in scans]
+    judged_blocks, judged_scans = laser.since(0.9, blocks, scans)
+    assert [message.header.stamp.to_sec() for _, message in judged_scans] == [1.0, 1.2, 1.4, 1.6, 1.8]
+    assert judged_blocks == blocks[5:]
+    assert laser.printed_in_time(judged_blocks, judged_scans, BEAMS, 5, WINDOW).passed
+
+
+def test_a_scan_stamped_at_the_turn_itself_is_of_before_it():
+    scans = stamped(3)
+    assert [message.header.stamp.to_sec() for _, message in laser.since(0.2, [], scans)[1]] == [0.4]
+
+
+def test_blocks_of_the_scans_before_the_turn_do_not_count():
+    # A stored printout of the robot standing still (the scans before the turn, the same in every
+    # grading with the seeded noise), printed as if each came: nothing of it is judged.
+    scans = stamped(10)
+    stored = [block(t + 0.001, message) for t, message in scans[:5]]
+    later = [(scans[5][0] + 0.001 + k * PERIOD, values(scans[k][1])) for k in range(5)]
+    judged_blocks, judged_scans = laser.since(0.9, stored + later, scans)
+    assert judged_blocks == later
+    verdict = laser.printed_in_time(judged_blocks, judged_scans, BEAMS, 5, WINDOW)
+    assert not verdict.passed and 'no scan of the 0.100 s before it' in verdict.reason
+
+
+def test_no_scan_after_the_turn_leaves_nothing_to_judge():
+    scans = stamped(4)
+    assert laser.since(5.0, [block(t, message) for t, message in scans], scans) == ([], [])

@@ -309,6 +309,22 @@ def check_laser_data(session, simulators):
             return run.judged({'laser_data': Verdict(False, 'expected %s; seen: %s sent velocity commands while the '
                                                      'grader turned the robot (laser_data.py only prints the scans)'
                                                      % (expected, ', '.join(stoppers)), hints)})
+        # Nor a node that cut the grader's turn off before fake_tb3 heard it (a subscriber can be told
+        # through the ROS APIs that a publisher is gone): only scans fake_tb3 sent after it applied
+        # the turn, by its own record, are judged.
+        turned = run.watch.first_command_of(rospy.get_name())
+        if turned is None:
+            return run.judged({'laser_data': Verdict(False, 'expected %s; seen: fake_tb3 never applied the grader\'s '
+                                                     'turn (its record holds no command of the grader), so no scan '
+                                                     'it sent can be told from a stored one' % expected, hints)})
+        run.mark(turned, 'fake_tb3 turns the robot at %g rad/s: the scans from here are judged'
+                 % criterion['turn_speed'], 'laser_data')
+        printed_before = len(blocks)
+        blocks, scans = laser.since(turned, blocks, scans)
+        if not blocks:
+            return run.judged({'laser_data': Verdict(False, 'expected %s; seen: %d scans printed, none once fake_tb3 '
+                                                     'turned the robot (%.1f simulated s)'
+                                                     % (expected, printed_before, turned), hints)})
         # The window in scans too, as many as the simulator sends in it at its pace (50 in 1 s at
         # 10x): a machine paused between a scan and its block sends none meanwhile.
         window_scans = int(round(criterion['print_window'] * criterion['real_time_factor'] * driving.SCAN_HZ))

@@ -1,0 +1,97 @@
+"""laser_data is judged on the scans fake_tb3 sent after it applied the grader's turn, by its own
+record: a node that cut the turn off (a subscriber can be told through the ROS APIs that a publisher
+is gone) leaves a robot standing still, whose seeded scans a stored printout could show."""
+import types
+
+import pytest
+from sensor_msgs.msg import LaserScan
+
+from course_checks import laser
+from course_grader import rubric
+from course_grader.labs import move_turtlebot3
+
+BEAMS = [0, 90, 180, 270, 359]
+GRADER = '/course_grader'
+
+
+def scans(count):
+    """(wall s sent, LaserScan): a scan every 0.02 wall s and 0.2 simulated s, each unlike the one
+    before."""
+    sent = []
+    for i in range(count):
+        message = LaserScan(ranges=[1.0 + i / 10 + beam / 1000 for beam in range(360)])
+        message.header.stamp.secs, message.header.stamp.nsecs = divmod(i * 200000000, 1000000000)
+        sent.append((i * 0.02, message))
+    return sent
+
+
+def printed(sent):
+    """The node's output lines, each block read 1 ms after its scan was sent: (wall s read, line)."""
+    lines = []
+    for at, message in sent:
+        block = ['=' * 10] + [line for label, beam in zip(laser.LABELS, BEAMS)
+                              for line in (label, repr(message.ranges[beam]))]
+        lines += [(at + 0.001, line) for line in block]
+    return lines
+
+
+class FakeRun:
+    """What check_laser_data asks of its Run: the node's output, fake_tb3's record."""
+
+    def __init__(self, session, simulators, script, **settings):
+        self.node = types.SimpleNamespace(
+            name=script, lines=[line for _, line in session.output], explain=lambda: [], ended=lambda: False,
+            launch=types.SimpleNamespace(timed_lines=lambda: session.output))
+        self.deadline = types.SimpleNamespace(wait=lambda condition, gave_up=None: condition())
+        self.watch = types.SimpleNamespace(scan_entries=lambda: session.sent,
+                                           command_senders=lambda but=None: [],
+                                           first_command_of=lambda node: session.turned if node == GRADER else None)
+        self.marks = session.marks
+
+    def mark(self, t, what, criterion):
+        self.marks.append((t, what, criterion))
+
+    def judged(self, outcomes):
+        return outcomes
+
+    def stop(self):
+        pass
+
+
+@pytest.fixture
+def grading(monkeypatch):
+    session = types.SimpleNamespace(rubric=rubric.load('move_turtlebot3'), marks=[])
+    monkeypatch.setattr(move_turtlebot3, 'Run', FakeRun)
+    monkeypatch.setattr(move_turtlebot3.rospy, 'Publisher', lambda *args, **kwargs: types.SimpleNamespace(
+        publish=lambda message: None, unregister=lambda: None))
+    monkeypatch.setattr(move_turtlebot3.rospy, 'get_name', lambda: GRADER)
+    return session
+
+
+def test_the_scans_after_the_turn_are_judged_and_the_moment_marked(grading):
+    grading.sent = scans(20)
+    grading.output, grading.turned = printed(grading.sent), 0.9
+    verdict = move_turtlebot3.check_laser_data(grading, None)['laser_data']
+    assert verdict.passed, verdict.reason
+    assert verdict.reason.endswith('seen 15 scans printed (8 needed), each a later scan than the one before, '
+                                   'printed 1.0 to 1.0 ms after it was sent')
+    assert grading.marks == [(0.9, 'fake_tb3 turns the robot at 1 rad/s: the scans from here are judged',
+                              'laser_data')]
+
+
+def test_a_turn_fake_tb3_never_applied_judges_nothing(grading):
+    # Every block the scan of its moment, as a stored printout of a robot standing still would be.
+    grading.sent = scans(20)
+    grading.output, grading.turned = printed(grading.sent), None
+    verdict = move_turtlebot3.check_laser_data(grading, None)['laser_data']
+    assert not verdict.passed
+    assert verdict.reason.endswith("seen: fake_tb3 never applied the grader's turn (its record holds no command of "
+                                   'the grader), so no scan it sent can be told from a stored one')
+
+
+def test_blocks_printed_only_before_the_turn_count_for_nothing(grading):
+    grading.sent = scans(20)
+    grading.output, grading.turned = printed(grading.sent[:10]), 2.5
+    verdict = move_turtlebot3.check_laser_data(grading, None)['laser_data']
+    assert not verdict.passed
+    assert verdict.reason.endswith('seen: 10 scans printed, none once fake_tb3 turned the robot (2.5 simulated s)')
