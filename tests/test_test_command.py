@@ -343,6 +343,20 @@ def test_a_first_run_starts_the_longest_steps_first_from_the_measured_seconds(tm
     assert 'long' in (tmp_path / 'times.txt').read_text()  # the next run uses its own times
 
 
+def test_the_steps_that_hold_the_most_core_seconds_start_first(tmp_path):
+    """A step that waits (98 s at a tenth of a core: a quarter of a core held) comes after one that
+    computes for 65 s, and one of unknown CPU is taken to use a whole core."""
+    times = tmp_path / 'times.txt'
+    times.write_text('98.0\t9.0\twaits\n65.0\t70.0\tcomputes\n30.0\t-\tunknown_cpu\n20.0\t5.0\tshort\n')
+    lines = ''.join('%s\t0\tshared\techo %s\n' % (name, name) for name in ('short', 'waits', 'unknown_cpu', 'computes'))
+    result = subprocess.run(
+        ['/usr/bin/python3', os.path.join(ROOT, 'tools', 'run_test_jobs.py'), '--jobs', '1',
+         '--logs', str(tmp_path / 'logs'), '--times', str(times), '--failed-steps', str(tmp_path / 'failed.txt')],
+        input=lines, stdout=subprocess.PIPE, universal_newlines=True, timeout=60)
+    finished = [line.split()[1] for line in result.stdout.splitlines()[:-1]]
+    assert finished == ['computes', 'unknown_cpu', 'waits', 'short'], result.stdout
+
+
 def test_beside_an_alone_job_the_others_start_as_its_share_and_the_idle_time_leave_room(tmp_path):
     """While an alone job runs, the next alone job waits, and shared jobs start as they would
     otherwise (SideBySide), the alone job's share of a core in its last run counted with theirs;

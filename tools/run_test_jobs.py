@@ -19,13 +19,13 @@ cores have room for the next: over the last few seconds the cores were idle for 
 share in its last run (a whole core when unknown) and HEADROOM more, and the running jobs' shares
 with it fit in the cores. Most steps wait for robots moving in real time (a quarter of a core), so
 on a quiet machine four or five run; on a loaded one the idle time is not there and two run, as
-with --jobs 2. They start in order (the longest first): one that computes waits for its room,
+with --jobs 2. They start in order (the most core-seconds first): one that computes waits for its room,
 and lighter ones do not pass it.
 
 Prints one line per job as it ends (label, seconds, CPU seconds of all it ran, exit status), and
 under a job that failed the lines of its log that say why. Each job's whole output goes to
 DIR/<label>.log, and when each ran to DIR/timeline.txt. The durations are
-kept in FILE (`wall seconds<TAB>CPU seconds<TAB>label`), so that the next run starts the longest jobs first (on a first run, those of
+kept in FILE (`wall seconds<TAB>CPU seconds<TAB>label`), so that the next run starts the jobs of the most core-seconds first (on a first run, those of
 --first-times, measured once on a 2-core machine; jobs unknown to both come first). A job that ends
 with any other exit status is written to --failed-steps, one per line: its results are not to be
 trusted (a pytest job's exit 5: it collected no tests). So is a job that leaves processes running: each job's
@@ -101,6 +101,17 @@ def cpu_share(times, label):
     """The share of one core a job used in its last run (CPU over wall seconds), None if unknown."""
     seconds, cpu = times.get(label, (None, None))
     return cpu / seconds if cpu is not None and seconds else None
+
+
+def reserved(times, label):
+    """The core-seconds a job holds: its wall seconds times what it is taken to use of a core
+    (needs), infinite when unknown. A job that waits (a quarter of a core for 98 s) comes after one
+    that computes for 65 s: put first by its wall time, it held one of the first two places while
+    the computing job waited for room beside it, the cores half idle (70 s in a run of 2026-12-04)."""
+    if label not in times:
+        return float('inf')
+    seconds, _ = times[label]
+    return seconds * needs(cpu_share(times, label))
 
 
 def cpu_sample(stat='/proc/stat'):
@@ -228,9 +239,9 @@ def main():
     jobs = read_jobs(sys.stdin)
     known = read_times(options.first_times) if options.first_times else {}
     known.update(read_times(options.times))
-    # Those that need the machine alone first; then the longest first, so that the last minutes
-    # are not one long job alone (unknown ones first of all).
-    jobs.sort(key=lambda job: (not job.alone, -known.get(job.label, (float('inf'),))[0]))
+    # Those that need the machine alone first; then the most core-seconds first (unknown ones first
+    # of all), so that the last minutes are not one long job alone.
+    jobs.sort(key=lambda job: (not job.alone, -reserved(known, job.label)))
     os.makedirs(options.logs, exist_ok=True)
     side_by_side = SideBySide(options.jobs, len(os.sched_getaffinity(0)))
     widest = 0
