@@ -319,6 +319,37 @@ def test_the_next_job_starts_when_its_share_fits_and_none_passes_it():
     assert jobs.next_job(waiting[2:], running, side_by_side, share) is None  # unknown: a core
 
 
+def test_a_job_that_ends_before_the_room_the_next_waits_for_comes_passes_it():
+    """Backfilling: the grader's test (0.82 of a core) waits for the rate step (ends at 42 s) beside
+    the page (a core until 65 s); a light step that ends by 42 s starts meanwhile, one that would
+    end later does not, nor one that needs more than the idle time leaves."""
+    jobs = load_run_test_jobs()
+    machine = FakeMachine()
+    side_by_side = jobs.SideBySide('auto', 2, window=3.0, sample=machine.sample, clock=lambda: machine.now)
+    known = {'rates': (42.0, 14.7), 'page': (65.0, 63.7), 'grader': (49.0, 40.2), 'waits': (99.0, 8.0),
+             'short': (35.0, 3.9), 'computes': (20.0, 14.0)}
+    share = lambda label: jobs.cpu_share(known, label)
+    wall = lambda label: known.get(label, (None,))[0]
+    start = machine.now
+    running = [jobs.Running(None, 'rates', {0}, True, None, start, 'mark'),
+               jobs.Running(None, 'page', {0}, False, None, start, 'mark')]
+    waiting = [jobs.Job(label, {0}, False, '') for label in ('grader', 'waits', 'computes', 'short')]
+    machine.idle = 0.7
+    machine.pass_seconds(5.0)
+    # 0.45 of a core may start (idle 0.7 less the headroom); the room for the grader's comes at 42 s.
+    assert jobs.room_comes(running, 0.82, 2, share, wall) == pytest.approx(start + 42.0)
+    assert jobs.next_job(waiting, running, side_by_side, share, wall) == 3      # short: ends at 40 s
+    assert jobs.next_job(waiting[:3], running, side_by_side, share, wall) is None   # waits: 104 s; computes: 0.7
+    machine.pass_seconds(5.0)
+    assert jobs.next_job(waiting[:2] + waiting[3:], running, side_by_side, share, wall) is None   # 45 s: too late
+    # Room held by the idle time, not by the running jobs' shares: nothing passes (as before).
+    assert jobs.room_comes(running[1:], 0.82, 2, share, wall) is None
+    # A running job of unknown length: when the room comes is not known, nothing passes.
+    unknown = [jobs.Running(None, 'new', {0}, False, None, start, 'mark'), running[0]]
+    assert jobs.room_comes(unknown, 1.5, 2, share, wall) is None
+    assert jobs.room_comes(unknown, 0.82, 2, share, wall) == pytest.approx(start + 42.0)  # it need not end
+
+
 def test_a_fixed_number_of_jobs_never_grows():
     jobs = load_run_test_jobs()
     machine = FakeMachine()

@@ -20,7 +20,7 @@ share in its last run (a whole core when unknown) and HEADROOM more, and the run
 with it fit in the cores. Most steps wait for robots moving in real time (a quarter of a core), so
 on a quiet machine four or five run; on a loaded one the idle time is not there and two run, as
 with --jobs 2. They start in order (the most core-seconds first): one that computes waits for its room,
-and lighter ones do not pass it.
+and lighter ones do not pass it, unless they end before that room comes (next_job).
 
 Prints one line per job as it ends (label, seconds, CPU seconds of all it ran, exit status), and
 under a job that failed the lines of its log that say why. Each job's whole output goes to
@@ -183,14 +183,34 @@ def needs(share):
     return 1.0 if share is None else max(share, LIGHTEST_SHARE)
 
 
-def next_job(waiting, running, side_by_side, share=lambda label: None):
+def room_comes(running, needed, cores, share, wall):
+    """When (a time of SideBySide's clock) the running jobs leave `needed` of a core planned for
+    another, as each ends after its wall seconds of its last run; None when it is there already,
+    or when a job that must end first is of unknown length."""
+    room = cores - sum(needs(share(entry.label)) for entry in running)
+    if room >= needed:
+        return None
+    ends = sorted((entry.start + (wall(entry.label) or float('inf')), needs(share(entry.label)))
+                  for entry in running)
+    for end, freed in ends:
+        room += freed
+        if room >= needed:
+            return end if end < float('inf') else None
+    return None
+
+
+def next_job(waiting, running, side_by_side, share=lambda label: None, wall=lambda label: None):
     """The index in `waiting` (Jobs, the alone ones first) of the job to start now, or None when
     none may start yet. `running`: the Running jobs; `share(label)`: a job's share of a core in its
-    last run (None if unknown). An alone job starts when no other alone job runs (the others run at
-    a lower priority; with --jobs 1 or on one core, when nothing runs), a shared one when the cores
-    have room for it beside all that runs, the alone job included (SideBySide), in order: a
-    computing job that waits for room is not passed by lighter ones, which would keep the room from
-    coming and leave it for the end, alone."""
+    last run, `wall(label)` its wall seconds (None if unknown). An alone job starts when no other
+    alone job runs (the others run at a lower priority; with --jobs 1 or on one core, when nothing
+    runs), a shared one when the cores have room for it beside all that runs, the alone job included
+    (SideBySide), in order: a computing job that waits for room is not passed by lighter ones, which
+    would keep the room from coming and leave it for the end, alone. Unless the room it waits for is
+    held by running jobs that end later (the ros_exercises page, a whole core for 65 s, beside a
+    rate step: the next that computes waited with the cores a third idle): then a later one that
+    fits now and ends before that room comes starts (backfilling, as batch schedulers do), and
+    delays nothing."""
     running = list(running)
     shares = [share(entry.label) for entry in running]
     alone_runs = any(entry.alone for entry in running)
@@ -201,9 +221,20 @@ def next_job(waiting, running, side_by_side, share=lambda label: None):
     if alone_runs and not side_by_side.beside(len(running)):
         return None
     first_shared = next((index for index, job in enumerate(waiting) if not job.alone), None)
-    if first_shared is not None and needs(share(waiting[first_shared].label)) <= side_by_side.spare(shares):
+    if first_shared is None:
+        return None
+    spare = side_by_side.spare(shares)
+    needed = needs(share(waiting[first_shared].label))
+    if needed <= spare:
         return first_shared
-    return None
+    comes = room_comes(running, needed, side_by_side.cores, share, wall)
+    if comes is None:
+        return None
+    now = side_by_side.clock()
+    return next((index for index in range(first_shared + 1, len(waiting))
+                 if not waiting[index].alone and wall(waiting[index].label) is not None
+                 and needs(share(waiting[index].label)) <= spare
+                 and now + wall(waiting[index].label) <= comes), None)
 
 
 def start_job(alone):
@@ -253,7 +284,8 @@ def main():
     while waiting or running:
         while waiting:
             index = next_job(waiting, running.values(), side_by_side,
-                             share=lambda label: cpu_share(known, label))
+                             share=lambda label: cpu_share(known, label),
+                             wall=lambda label: known.get(label, (None,))[0])
             if index is None:
                 break
             job = waiting.pop(index)
