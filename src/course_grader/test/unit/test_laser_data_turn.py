@@ -42,7 +42,9 @@ class FakeRun:
         self.node = types.SimpleNamespace(
             name=script, lines=[line for _, line in session.output], explain=lambda: [], ended=lambda: False,
             launch=types.SimpleNamespace(timed_lines=lambda: session.output))
-        self.deadline = types.SimpleNamespace(wait=lambda condition, gave_up=None: condition())
+        # The run's wait: whether it would end now, with all the node printed and fake_tb3 sent.
+        self.deadline = types.SimpleNamespace(
+            wait=lambda condition, gave_up=None: session.waited.append(condition()))
         self.watch = types.SimpleNamespace(scan_entries=lambda: session.sent,
                                            command_senders=lambda but=None: [],
                                            first_command_of=lambda node: session.turned if node == GRADER else None)
@@ -60,7 +62,7 @@ class FakeRun:
 
 @pytest.fixture
 def grading(monkeypatch):
-    session = types.SimpleNamespace(rubric=rubric.load('move_turtlebot3'), marks=[])
+    session = types.SimpleNamespace(rubric=rubric.load('move_turtlebot3'), marks=[], waited=[])
     monkeypatch.setattr(move_turtlebot3, 'Run', FakeRun)
     monkeypatch.setattr(move_turtlebot3.rospy, 'Publisher', lambda *args, **kwargs: types.SimpleNamespace(
         publish=lambda message: None, unregister=lambda: None))
@@ -95,3 +97,17 @@ def test_blocks_printed_only_before_the_turn_count_for_nothing(grading):
     verdict = move_turtlebot3.check_laser_data(grading, None)['laser_data']
     assert not verdict.passed
     assert verdict.reason.endswith('seen: 10 scans printed, none once fake_tb3 turned the robot (2.5 simulated s)')
+
+
+def test_the_run_waits_for_the_blocks_needed_after_a_late_turn(grading):
+    # A machine that delayed the turn to 2.5 simulated s: 20 blocks printed, 7 of them after it.
+    grading.sent = scans(20)
+    grading.output, grading.turned = printed(grading.sent), 2.5
+    verdict = move_turtlebot3.check_laser_data(grading, None)['laser_data']
+    assert grading.waited == [False]   # the run goes on (here it ends: no more scans come)
+    assert verdict.reason.endswith('seen 7 scans printed (8 needed), each a later scan than the one before, '
+                                   'printed 1.0 to 1.0 ms after it was sent')
+    grading.sent = scans(30)
+    grading.output, grading.waited = printed(grading.sent), []
+    assert move_turtlebot3.check_laser_data(grading, None)['laser_data'].passed
+    assert grading.waited == [True]

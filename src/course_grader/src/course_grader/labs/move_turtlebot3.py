@@ -291,9 +291,18 @@ def check_laser_data(session, simulators):
         turn.publish(Twist(angular=Vector3(z=criterion['turn_speed'])))
         expected = ('%s prints, for every scan as it comes, ========== and the labels s1 [0] ... s5 [359] each '
                     'followed by the range of that beam (%s)' % (run.node.name, ', '.join(map(str, beams))))
-        run.deadline.wait(lambda: len(laser.printed_blocks(laser.normalized(run.node.lines))) >= needed,
-                          gave_up=run.node.ended)
-        blocks = laser.timed_blocks(run.node.launch.timed_lines() if run.node.launch else [])
+        grader = rospy.get_name()
+
+        def timed_blocks():
+            return laser.timed_blocks(run.node.launch.timed_lines() if run.node.launch else [])
+
+        def printed_since_turn():
+            """As many blocks as needed printed once fake_tb3 applied the turn (judged from there on,
+            below: a block of before, on a machine that delayed the turn, does not count)."""
+            turned = run.watch.first_command_of(grader)
+            return turned is not None and len(laser.since(turned, timed_blocks(), run.watch.scan_entries())[0]) >= needed
+        run.deadline.wait(printed_since_turn, gave_up=run.node.ended)
+        blocks = timed_blocks()
         run.stop()
         scans = run.watch.scan_entries()   # (time sent, scan) of every scan fake_tb3 sent, up to its stop
         hints = run.node.explain()
@@ -312,7 +321,7 @@ def check_laser_data(session, simulators):
         # Nor a node that cut the grader's turn off before fake_tb3 heard it (a subscriber can be told
         # through the ROS APIs that a publisher is gone): only scans fake_tb3 sent after it applied
         # the turn, by its own record, are judged.
-        turned = run.watch.first_command_of(rospy.get_name())
+        turned = run.watch.first_command_of(grader)
         if turned is None:
             return run.judged({'laser_data': Verdict(False, 'expected %s; seen: fake_tb3 never applied the grader\'s '
                                                      'turn (its record holds no command of the grader), so no scan '
