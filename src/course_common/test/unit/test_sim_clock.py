@@ -8,6 +8,7 @@ import rospy
 import rospy.rostime
 
 from course_common.sim_clock import set_own_time
+from course_common.waiting import poll_until
 
 
 @pytest.fixture
@@ -31,6 +32,9 @@ def test_a_sleep_on_simulated_time_ends_when_the_time_comes(simulated_time):
     slept = threading.Event()
     sleeper = threading.Thread(target=lambda: (rospy.sleep(0.5), slept.set()), daemon=True)
     sleeper.start()
+    # Only once the sleeper waits on rospy's condition has it read its start (1.0 s): a time set
+    # before would move its end.
+    assert poll_until(lambda: rospy.rostime.get_rostime_cond()._waiters, 5.0, poll=0.001)
     set_own_time(rospy.Time(1, 200000000))
     assert not slept.wait(0.5)   # 0.2 simulated seconds of its 0.5: still asleep (the wall clock does not count)
     set_own_time(rospy.Time(1, 600000000))

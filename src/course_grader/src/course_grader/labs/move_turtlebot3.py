@@ -313,7 +313,7 @@ def check_laser_data(session, simulators):
             return run.judged({'laser_data': Verdict(False, 'expected %s; seen: %s' % (expected, hints[0]), hints[1:])})
         # The turn is what no stored printout can follow: a node that stopped it (its own cmd_vel)
         # printed scans of a robot standing still, which are the same in every grading.
-        stoppers = run.watch.command_senders(but=rospy.get_name())
+        stoppers = run.watch.command_senders(but=grader)
         if stoppers:
             return run.judged({'laser_data': Verdict(False, 'expected %s; seen: %s sent velocity commands while the '
                                                      'grader turned the robot (laser_data.py only prints the scans)'
