@@ -57,6 +57,15 @@ def still_since(poses):
     return poses[first]
 
 
+def drove_off(poses, since, place):
+    """The simulated time of the first of the poses after `since` s at which the robot had moved
+    from `place` (x, y), where it stood then, by more than rounding; None while it has not."""
+    for t, x, y, _ in poses:
+        if t > since and math.hypot(x - place[0], y - place[1]) >= STILL_M:
+            return t
+    return None
+
+
 def front_median(scans, seconds):
     """The front beam's median over the scans of the last `seconds` (three at least): one noisy
     reading does not decide."""

@@ -86,6 +86,11 @@ class SimRecord:
         return next((entry.sim_time for entry in self.records.entries('command')
                      if node in entry.fields()['nodes']), None)
 
+    def put_back(self):
+        """(simulated time, fields) of the grader's put-back (fake_tb3.put_back), None before it."""
+        entries = self.records.entries('put_back')
+        return (entries[0].sim_time, entries[0].fields()) if entries else None
+
     def service_calls(self):
         return self.records.service_calls()
 
@@ -207,6 +212,11 @@ class RobotWatch:
         if self._record:
             return self._record.first_command_of(node)
         return None
+
+    def put_back(self):
+        """(simulated time, {'still_since', 'x', 'y', 'to_x', 'to_y'}) of the grader's put-back, None
+        before it (the record only: None from the topics)."""
+        return self._record.put_back() if self._record else None
 
     def copy(self, name):
         """What was recorded so far: 'poses', 'scans' or 'commands'."""

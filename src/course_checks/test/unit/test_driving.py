@@ -59,6 +59,15 @@ def test_the_stop_is_the_first_pose_of_the_latest_standing_still():
     assert driving.still_since(poses[:1]) == poses[0]
 
 
+def test_driving_off_is_the_first_pose_away_from_where_the_robot_was_put():
+    # Stood at 2 m until 5 s, put back to 1.5 m at 5.0 s (the odometry of 4.9 s still shows 2 m),
+    # stood there until 5.5 s, then drove.
+    poses = [(t / 10, 2.0 if t <= 49 else 1.5 + max(0, t - 55) * 0.05, 0.0, 0.0) for t in range(70)]
+    assert driving.drove_off(poses, 5.0, (1.5, 0.0)) == 5.6
+    assert driving.drove_off(poses[:56], 5.0, (1.5, 0.0)) is None
+    assert driving.drove_off(poses, 7.0, (1.5, 0.0)) is None   # only the poses after the put-back
+
+
 def scans(*fronts):
     return [LaserScan(ranges=[front] + [3.5] * 359) for front in fronts]
 

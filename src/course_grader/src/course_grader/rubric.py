@@ -1,6 +1,7 @@
 """Rubric files (rubrics/<lab>.yaml): what is graded, for how many points, with which thresholds,
 what the student may see of each criterion (`visibility`) and the late-work policy (`late`)."""
 import datetime
+import math
 import os
 
 import rospkg
@@ -172,6 +173,18 @@ class Rubric:
                 raise RubricError('%s: criterion %s gives %s, which its check in %s does not read (it reads: %s)' % (
                     self.path, criterion.id, ', '.join(unread), lab_module, ', '.join(known[criterion.id]) or 'none'))
 
+    def check_drawn(self, drawn):
+        """Refuse bounds the grader draws a number between at each grading (`drawn`: the lab's
+        (criterion id, setting) pairs) unless they are [low, high], numbers with 0 < low <= high."""
+        for criterion_id, key in drawn:
+            bounds = self.criterion(criterion_id).settings[key]
+            if not (isinstance(bounds, list) and len(bounds) == 2
+                    and all(isinstance(b, (int, float)) and not isinstance(b, bool) and math.isfinite(b) for b in bounds)
+                    and 0 < bounds[0] <= bounds[1]):
+                raise RubricError('%s: %s of criterion %s must be [low, high], two numbers with 0 < low <= high (the '
+                                  'grader draws one between them at each grading), not %r' % (
+                                      self.path, key, criterion_id, bounds))
+
     @property
     def max_score(self):
         return sum(c.points for c in self.criteria)
@@ -203,4 +216,5 @@ def load(lab_or_path):
         raise RubricError('%s: lab %r is none of the grader\'s (%s)' % (path, rubric.lab, ', '.join(sorted(LABS))))
     lab = lab_module(rubric.lab)
     rubric.check_against(lab.CRITERIA, lab.__name__)
+    rubric.check_drawn(getattr(lab, 'DRAWN', ()))
     return rubric

@@ -5,6 +5,7 @@ import errno
 import os
 import re
 import stat
+import subprocess
 import types
 import xml.etree.ElementTree as ElementTree
 
@@ -92,3 +93,40 @@ def test_during_the_build_only_the_first_runs_simulator_starts_the_others_once_t
     move_turtlebot3.Run.under_way(first)
     assert [log for log, _ in session.started] == ['sim_trajectory.txt', 'sim_laser_data.txt', 'sim_avoid_obstacle.txt']
     assert [session.simulators.take().log_name for _ in range(2)] == ['sim_laser_data.txt', 'sim_avoid_obstacle.txt']
+
+
+class RealStart(SandboxOutOfProcesses):
+    """A session whose trusted side runs the program it is given, with a fake_tb3 whose main()
+    writes the settings it was started with to `told`."""
+
+    def __init__(self, folder):
+        super().__init__(folder)
+        self.full = False
+        stub = os.path.join(folder, 'stub', 'fake_tb3')
+        os.makedirs(stub)
+        open(os.path.join(stub, '__init__.py'), 'w').close()
+        self.told = os.path.join(folder, 'told.json')
+        with open(os.path.join(stub, 'node.py'), 'w') as node:
+            node.write('def main(settings):\n    open(%r, "w").write(settings)\n' % self.told)
+        self.argv = None
+
+    def trusted(self, argv, log_name, record=None):
+        self.argv = argv
+        process = subprocess.Popen(argv, env=dict(os.environ, PYTHONPATH=os.path.join(self.folder, 'stub')))
+        self.started.append(process)
+        return types.SimpleNamespace(ended=lambda: process.poll() is not None)
+
+
+def test_the_graders_settings_reach_fake_tb3_through_its_fifo_alone(tmp_path):
+    # The put-back's moment and distance (fake_tb3.put_back): on the master's parameters or the
+    # command line (/proc/PID/cmdline) any node could read them.
+    session = RealStart(str(tmp_path))
+    prepared = PreparedSimulator(session, 'sim_avoid_obstacle.txt')
+    assert stat.S_IMODE(os.stat(prepared.fifo).st_mode) == 0o600
+    settings = '{"put_back": {"min_drive": 0.5, "after": 7.25, "distance": 0.8125}}'
+    prepared.start(20, settings)
+    assert session.started[0].wait(20) == 0
+    with open(session.told) as told:
+        assert told.read() == settings
+    assert not any('put_back' in arg for arg in session.argv)
+    assert not os.path.exists(prepared.fifo)

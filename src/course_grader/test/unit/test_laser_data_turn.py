@@ -10,6 +10,8 @@ from course_checks import laser
 from course_grader import rubric
 from course_grader.labs import move_turtlebot3
 
+import fake_runs
+
 BEAMS = [0, 90, 180, 270, 359]
 GRADER = '/course_grader'
 
@@ -35,7 +37,7 @@ def printed(sent):
     return lines
 
 
-class FakeRun:
+class FakeRun(fake_runs.FakeRun):
     """What check_laser_data asks of its Run: the node's output, fake_tb3's record."""
 
     def __init__(self, session, simulators, script, **settings):
@@ -50,14 +52,6 @@ class FakeRun:
                                            first_command_of=lambda node: session.turned if node == GRADER else None)
         self.marks = session.marks
 
-    def mark(self, t, what, criterion):
-        self.marks.append((t, what, criterion))
-
-    def judged(self, outcomes):
-        return outcomes
-
-    def stop(self):
-        pass
 
 
 @pytest.fixture

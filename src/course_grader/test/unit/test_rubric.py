@@ -71,6 +71,13 @@ def criterion_of(criteria, criterion_id):
     (lambda criteria: criterion_of(criteria, 'avoid_stays').update(max_crep=0.2),
      r'criterion avoid_stays gives max_crep, which its check in course_grader.labs.move_turtlebot3 does not read '
      r'\(it reads: .*max_creep'),
+    (lambda criteria: criterion_of(criteria, 'avoid_stops').update(put_back_after=5.0),
+     r'put_back_after of criterion avoid_stops must be \[low, high\], two numbers with 0 < low <= high \(the grader '
+     r'draws one between them at each grading\), not 5.0'),
+    (lambda criteria: criterion_of(criteria, 'avoid_stops').update(put_back_distance=[1.5, 0.3]),
+     r'put_back_distance of criterion avoid_stops must be \[low, high\].*not \[1.5, 0.3\]'),
+    (lambda criteria: criterion_of(criteria, 'avoid_stops').update(put_back_distance=[0, '1']),
+     r'put_back_distance of criterion avoid_stops must be \[low, high\].*not \[0, .1.\]'),
 ])
 def test_a_rubric_that_does_not_fit_its_lab_is_refused_naming_what(tmp_path, change, message):
     with pytest.raises(rubric.RubricError, match=message):

@@ -318,6 +318,19 @@ class Simulation:
         """Whether robot's body overlaps an obstacle now (a spawn pose inside something)."""
         return bool(boxes_overlap(robot.pose, robot.box, *self.obstacles_for(robot))[0])
 
+    def place(self, robot, x, y, yaw):
+        """Put `robot` at (x m, y m, yaw rad) at once, as a hand would: its command holds. False,
+        and the robot stays, where its body would overlap an obstacle there."""
+        before = robot.pose
+        robot.x, robot.y, robot.yaw = float(x), float(y), wrap_angle(float(yaw))
+        if not all(map(math.isfinite, robot.pose)) or self.overlapping(robot):
+            robot.x, robot.y, robot.yaw = before
+            return False
+        robot.free_travel = 0.0   # unknown here: the next step tests
+        robot.in_contact = False
+        robot.trail.append((robot.x, robot.y))
+        return True
+
     def step(self, dt):
         """Advance every robot by dt seconds; returns the robots that began a contact (each one
         is also logged as a warning)."""

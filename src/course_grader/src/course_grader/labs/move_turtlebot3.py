@@ -2,8 +2,10 @@
 the checks of course_checks that move_turtlebot3's own tests use."""
 import errno
 import functools
+import json
 import math
 import os
+import random
 
 import rospy
 from geometry_msgs.msg import Twist, Vector3
@@ -24,8 +26,10 @@ LAUNCH_DEFAULTS = {'cmd_vel_timeout': 0, 'clamp_speed': False, 'picture_png': ''
 DRAIN_SECONDS = 2.0
 # fake_tb3 as far as it goes without its parameters: its modules imported (half of its start), then
 # it waits until the FIFO named by its first argument is opened for writing, which only the trusted
-# side can do (the FIFO lies in its own folder), once the run's parameters are set.
-PREPARED_FAKE_TB3 = 'import sys\nfrom fake_tb3.node import main\nopen(sys.argv[1]).close()\nmain()\n'
+# side can do (the FIFO lies in its own folder), once the run's parameters are set. What the grader
+# writes into it are settings no node can read (fake_tb3.put_back), unlike the master's parameters.
+PREPARED_FAKE_TB3 = ('import sys\nfrom fake_tb3.node import main\nwith open(sys.argv[1]) as go:\n'
+                     '    settings = go.read()\nmain(settings)\n')
 
 
 class PreparedSimulator:
@@ -48,18 +52,23 @@ class PreparedSimulator:
             self.discard_fifo()
             raise
 
-    def _let_go(self):
+    def _let_go(self, settings):
         try:
-            os.close(os.open(self.fifo, os.O_WRONLY | os.O_NONBLOCK))
-            return True
+            go = os.open(self.fifo, os.O_WRONLY | os.O_NONBLOCK)
         except OSError as error:
             if error.errno != errno.ENXIO:
                 raise
             return False   # not waiting on the FIFO yet (still importing)
+        try:
+            os.write(go, settings.encode())   # a few bytes into an empty pipe: all at once
+        finally:
+            os.close(go)
+        return True
 
-    def start(self, seconds):
-        """Let it run (its parameters are set); the Launch. False from ended() when it could not."""
-        poll_until(lambda: self.launch.ended() or self._let_go(), seconds)
+    def start(self, seconds, settings=''):
+        """Let it run (its parameters are set), with the grader's settings (JSON text); the Launch.
+        False from ended() when it could not."""
+        poll_until(lambda: self.launch.ended() or self._let_go(settings), seconds)
         self.discard_fifo()
         return self.launch
 
@@ -129,7 +138,7 @@ def static_checks(session):
 class Run:
     """The simulator and one of the student's nodes on it, watched, stopped at the end."""
 
-    def __init__(self, session, simulators, script, picture=None, **sim_args):
+    def __init__(self, session, simulators, script, picture=None, grader_settings=None, **sim_args):
         self.session = session
         self.simulators = simulators
         self.stopped = False
@@ -155,7 +164,7 @@ class Run:
         rospy.set_param('/use_sim_time', True)
         for name, value in sorted(dict(LAUNCH_DEFAULTS, **sim_args).items()):
             rospy.set_param('%s/%s' % (SIMULATOR, name), value)
-        self.sim = prepared.start(self.deadline.left())
+        self.sim = prepared.start(self.deadline.left(), json.dumps(grader_settings) if grader_settings else '')
         # The node starts once the simulator runs: a submission that takes every process or the
         # processor from the start has not kept fake_tb3 from starting (its nodes never start).
         if not self.deadline.wait(self.watch.running, gave_up=self.sim.ended):
@@ -348,7 +357,15 @@ def check_laser_data(session, simulators):
 def check_avoid_obstacle(session, simulators):
     stops_c = session.rubric.criterion('avoid_stops')
     stays_c = session.rubric.criterion('avoid_stays')
+    # The grader's second start (fake_tb3.put_back): once the robot stood still for a while it is put
+    # back along its heading, at a moment and by a distance drawn here for this grading and given to
+    # fake_tb3 where no node can read them. A node that answers its scans drives and stops again;
+    # one that drives by the clock, tuned to the spawn pose, cannot know when or how far.
+    draw = random.SystemRandom()
+    put_back = {'min_drive': stops_c['min_drive'], 'after': draw.uniform(*stops_c['put_back_after']),
+                'distance': draw.uniform(*stops_c['put_back_distance'])}
     run = Run(session, simulators, stops_c['script'], picture='avoid_obstacle.png',
+              grader_settings={'put_back': put_back},
               world=stops_c['world'], x_pos=stops_c['x_pos'],
               y_pos=stops_c['y_pos'], noise_stddev=stops_c['noise_stddev'],
               noise_seed=stops_c['noise_seed'], real_time_factor=stops_c['real_time_factor'],
@@ -356,8 +373,10 @@ def check_avoid_obstacle(session, simulators):
     try:
         watch = run.watch
         low, high = stops_c['front_min'], stops_c['front_max']
-        expected = '%s drives at least %.1f m and stops with its front beam between %.2f and %.2f m' % (
-            run.node.name, stops_c['min_drive'], low, high)
+        react = stops_c['react_seconds']
+        expected = ('%s drives at least %.1f m and stops with its front beam between %.2f and %.2f m, and once '
+                    'the grader puts it back, drives again within %g s and stops so again' % (
+                        run.node.name, stops_c['min_drive'], low, high, react))
         spawn = watch.copy('poses')[0]
 
         def moved():
@@ -385,15 +404,20 @@ def check_avoid_obstacle(session, simulators):
                     'avoid_stays': Verdict(False, 'not checked: the robot did not stop')})
         stay = stays_c['stay_seconds']
         run.deadline.wait(lambda: watch.now() >= first_stop[0] + stay)
-        after = watch.poses_since(first_stop[0])
-        front = driving.front_at_stop(watch.copy('scans'), stay, low, high)
-        stayed = driving.stayed(after, watch.collisions or 0, stays_c['max_creep'], stay)
-        run.stop()
-        hints = run.node.explain()
-        outcomes = {'avoid_stops': Verdict(front.passed, 'expected %s; seen: it drove %.2f m and %s' % (
-            expected, travelled([spawn] + after[:1]), front.reason), hints)}
+        # The first stop and its stay, up to the put-back (which may come a tick before the stay's end).
+        put = watch.put_back()
+        stay_end = min(first_stop[0] + stay, put[0]) if put else first_stop[0] + stay
+        after = [pose for pose in watch.poses_since(first_stop[0]) if pose[0] < stay_end]
+        front = driving.front_at_stop([scan for scan in watch.copy('scans') if scan.header.stamp.to_sec() < stay_end],
+                                      stay, low, high)
         run.mark(first_stop[0], 'stopped after %.2f m: %s' % (travelled([spawn] + after[:1]), front.reason),
                  'avoid_stops')
+        again = second_start(run, put_back, first_stop[0], react, low, high, stops_c['stopped_seconds'])
+        run.stop()
+        hints = run.node.explain()
+        stayed = driving.stayed(after, watch.collisions or 0, stays_c['max_creep'], stay)
+        outcomes = {'avoid_stops': Verdict(front.passed and again.passed, 'expected %s; seen: it drove %.2f m and %s; %s' % (
+            expected, travelled([spawn] + after[:1]), front.reason, again.reason), hints)}
         run.mark(after[-1][0] if after else first_stop[0], 'the stay judged: %s' % stayed.reason, 'avoid_stays')
         outcomes['avoid_stays'] = Verdict(stayed.passed, 'expected no collision and at most %.2f m moved in the %g '
                                           'simulated seconds after the stop; seen %s' % (
@@ -401,6 +425,47 @@ def check_avoid_obstacle(session, simulators):
         return run.judged(outcomes)
     finally:
         run.stop()
+
+
+def second_start(run, put_back, stopped_at, react, low, high, stopped_seconds):
+    """What the robot did once fake_tb3 put it back (its record tells when and where): a Verdict that
+    it drove off within `react` simulated s and stopped again with its front beam between low and high."""
+    watch = run.watch
+    # It stands still from its stop for `after` s at least (longer when it crept meanwhile).
+    run.deadline.wait(lambda: watch.put_back() or watch.now() >= stopped_at + 2 * put_back['after'] + 2,
+                      gave_up=run.node.ended)
+    put = watch.put_back()
+    if put is None:
+        if run.node.ended():
+            return Verdict(False, '%s ended before the grader could put the robot back' % run.node.name)
+        return Verdict(False, 'the grader puts the robot back once it stood still for %.1f s, and it never '
+                       'stood still that long' % put_back['after'])
+    at, where = put
+    distance = math.hypot(where['to_x'] - where['x'], where['to_y'] - where['y'])
+    told = 'put back %.2f m after %.1f s standing still' % (distance, at - where['still_since'])
+    run.mark(at, 'the grader puts the robot back %.2f m: it must drive and stop again' % distance, 'avoid_stops')
+
+    def judged():
+        off = driving.drove_off(watch.copy('poses'), at, (where['to_x'], where['to_y']))
+        if off is None:
+            return watch.now() >= at + react
+        return off > at + react or driving.stopped_for(watch.poses_since(off), stopped_seconds)
+    run.deadline.wait(judged, gave_up=run.node.ended)
+    off = driving.drove_off(watch.copy('poses'), at, (where['to_x'], where['to_y']))
+    if off is None:
+        return Verdict(False, '%s, it did not drive again within %g s (a node that answers its scans drives '
+                       'on the next one)' % (told, react))
+    if off > at + react:
+        return Verdict(False, '%s, it drove again only %.1f s later (within %g s expected: a node that answers '
+                       'its scans drives on the next one)' % (told, off - at, react))
+    if not driving.stopped_for(watch.poses_since(off), stopped_seconds):
+        return Verdict(False, '%s, it drove again and did not stop (front beam %.2f m)' % (told, watch.front_range()))
+    stop = driving.still_since(watch.copy('poses'))
+    front = driving.front_at_stop([scan for scan in watch.copy('scans') if scan.header.stamp.to_sec() >= stop[0]],
+                                  stopped_seconds, low, high)
+    run.mark(stop[0], 'stopped again after %.2f m: %s' % (travelled(watch.poses_since(at)[:1] + [stop]), front.reason),
+             'avoid_stops')
+    return Verdict(front.passed, '%s, it drove again %.1f s later and %s' % (told, off - at, front.reason))
 
 
 # Decided without a run: builds by the session's build, executable by static_checks.
@@ -421,11 +486,14 @@ RUNS = (
         'laser_data': SIMULATION + ('beams', 'blocks', 'turn_speed', 'print_window'),
     }, (NODES,)),
     LabRun('avoid_obstacle.py', check_avoid_obstacle, {
-        'avoid_stops': SIMULATION + ('lock_step', 'min_drive', 'stopped_seconds', 'front_min', 'front_max'),
+        'avoid_stops': SIMULATION + ('lock_step', 'min_drive', 'stopped_seconds', 'front_min', 'front_max',
+                                     'put_back_after', 'put_back_distance', 'react_seconds'),
         'avoid_stays': ('stay_seconds', 'max_creep'),
     }, (NODES,)),
 )
 CRITERIA = criteria_of(STATIC_CRITERIA, RUNS)
+# The settings that are [low, high] bounds of a number drawn at each grading (rubric.check_drawn).
+DRAWN = (('avoid_stops', 'put_back_after'), ('avoid_stops', 'put_back_distance'))
 
 
 def prepare(session):
