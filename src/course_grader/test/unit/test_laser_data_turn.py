@@ -1,6 +1,7 @@
 """laser_data is judged on the scans fake_tb3 sent after it applied the grader's turn, by its own
 record: a node that cut the turn off (a subscriber can be told through the ROS APIs that a publisher
 is gone) leaves a robot standing still, whose seeded scans a stored printout could show."""
+import random
 import types
 
 import pytest
@@ -58,8 +59,9 @@ class FakeRun(fake_runs.FakeRun):
 def grading(monkeypatch):
     session = types.SimpleNamespace(rubric=rubric.load('move_turtlebot3'), marks=[], waited=[])
     monkeypatch.setattr(move_turtlebot3, 'Run', FakeRun)
+    session.turns = []   # the angular speed of each Twist the grader published
     monkeypatch.setattr(move_turtlebot3.rospy, 'Publisher', lambda *args, **kwargs: types.SimpleNamespace(
-        publish=lambda message: None, unregister=lambda: None))
+        publish=lambda message: session.turns.append(message.angular.z), unregister=lambda: None))
     monkeypatch.setattr(move_turtlebot3.rospy, 'get_name', lambda: GRADER)
     return session
 
@@ -71,8 +73,21 @@ def test_the_scans_after_the_turn_are_judged_and_the_moment_marked(grading):
     assert verdict.passed, verdict.reason
     assert verdict.reason.endswith('seen 15 scans printed (8 needed), each a later scan than the one before, '
                                    'printed 1.0 to 1.0 ms after it was sent')
-    assert grading.marks == [(0.9, 'fake_tb3 turns the robot at 1 rad/s: the scans from here are judged',
+    [speed] = grading.turns
+    assert grading.marks == [(0.9, 'fake_tb3 turns the robot at %.2f rad/s: the scans from here are judged' % speed,
                               'laser_data')]
+
+
+def test_the_turn_speed_is_drawn_at_each_grading_either_way_round(grading, monkeypatch):
+    # A printout stored from one grading shows the scans of its turn: no other grading turns alike.
+    seeds = iter(range(12))
+    monkeypatch.setattr(move_turtlebot3.random, 'SystemRandom', lambda: random.Random(next(seeds)))
+    grading.sent = scans(20)
+    grading.output, grading.turned = printed(grading.sent), 0.9
+    for _ in range(12):
+        move_turtlebot3.check_laser_data(grading, None)
+    assert all(0.5 <= abs(speed) <= 1.5 for speed in grading.turns)
+    assert len(set(grading.turns)) == 12 and min(grading.turns) < 0 < max(grading.turns)
 
 
 def test_a_turn_fake_tb3_never_applied_judges_nothing(grading):

@@ -293,11 +293,14 @@ def check_laser_data(session, simulators):
     run = Run(session, simulators, criterion['script'], world=criterion['world'], x_pos=criterion['x_pos'],
               y_pos=criterion['y_pos'], noise_stddev=criterion['noise_stddev'],
               noise_seed=criterion['noise_seed'], real_time_factor=criterion['real_time_factor'])
-    # The grader turns the robot in place, from a moment its own timing sets: no two scans in a row
-    # are alike, nor the scans of two gradings, so only a node that reads each scan prints it.
+    # The grader turns the robot in place, from a moment its own timing sets, at a speed and in a
+    # direction drawn for this grading: no two scans in a row are alike, nor the scans of two
+    # gradings (a printout stored from one fits no other), so only a node that reads each scan prints it.
+    draw = random.SystemRandom()
+    turn_speed = draw.choice((-1, 1)) * draw.uniform(*criterion['turn_speed'])
     turn = rospy.Publisher('/cmd_vel', Twist, queue_size=1, latch=True)
     try:
-        turn.publish(Twist(angular=Vector3(z=criterion['turn_speed'])))
+        turn.publish(Twist(angular=Vector3(z=turn_speed)))
         expected = ('%s prints, for every scan as it comes, ========== and the labels s1 [0] ... s5 [359] each '
                     'followed by the range of that beam (%s)' % (run.node.name, ', '.join(map(str, beams))))
         grader = rospy.get_name()
@@ -335,8 +338,8 @@ def check_laser_data(session, simulators):
             return run.judged({'laser_data': Verdict(False, 'expected %s; seen: fake_tb3 never applied the grader\'s '
                                                      'turn (its record holds no command of the grader), so no scan '
                                                      'it sent can be told from a stored one' % expected, hints)})
-        run.mark(turned, 'fake_tb3 turns the robot at %g rad/s: the scans from here are judged'
-                 % criterion['turn_speed'], 'laser_data')
+        run.mark(turned, 'fake_tb3 turns the robot at %.2f rad/s: the scans from here are judged' % turn_speed,
+                 'laser_data')
         printed_before = len(blocks)
         blocks, scans = laser.since(turned, blocks, scans)
         if not blocks:
@@ -493,7 +496,7 @@ RUNS = (
 )
 CRITERIA = criteria_of(STATIC_CRITERIA, RUNS)
 # The settings that are [low, high] bounds of a number drawn at each grading (rubric.check_drawn).
-DRAWN = (('avoid_stops', 'put_back_after'), ('avoid_stops', 'put_back_distance'))
+DRAWN = (('laser_data', 'turn_speed'), ('avoid_stops', 'put_back_after'), ('avoid_stops', 'put_back_distance'))
 
 
 def prepare(session):
