@@ -53,6 +53,10 @@ export DISPLAY=   # the tests start their own Xvfb where they need a screen
 # The steps' ROS home: their logs, rostest's pid files, the checks they run and their pictures
 # (course_testing.pictures) stay with this run's logs, not in the user's ~/.ros.
 export ROS_HOME="$LOGS/ros_home"
+# And a home of their own: what the programs they start keep there (rviz's ~/.rviz, Mesa's shader
+# cache, chromium's profile) stays with this run's logs too, not in the user's home.
+export HOME="$LOGS/home"
+mkdir -p "$HOME"
 
 step_failures=()
 expected=()   # result files the steps must write, each with at least one test case
