@@ -9,7 +9,7 @@ from sensor_msgs.msg import LaserScan
 
 from course_checks import laser
 from course_grader import rubric
-from course_grader.labs import move_turtlebot3
+from course_grader.labs import common, move_turtlebot3
 
 import fake_runs
 
@@ -81,7 +81,7 @@ def test_the_scans_after_the_turn_are_judged_and_the_moment_marked(grading):
 def test_the_turn_speed_is_drawn_at_each_grading_either_way_round(grading, monkeypatch):
     # A printout stored from one grading shows the scans of its turn: no other grading turns alike.
     seeds = iter(range(12))
-    monkeypatch.setattr(move_turtlebot3.random, 'SystemRandom', lambda: random.Random(next(seeds)))
+    monkeypatch.setattr(common.random, 'SystemRandom', lambda: random.Random(next(seeds)))
     grading.sent = scans(20)
     grading.output, grading.turned = printed(grading.sent), 0.9
     for _ in range(12):

@@ -1,8 +1,11 @@
 """Rubric files: the shipped ones load, a teacher's mistakes are named."""
+import random
+
 import pytest
 import yaml
 
 from course_grader import rubric
+from course_grader.labs import common, lab_module
 
 
 def test_every_shipped_rubric_loads_with_points():
@@ -99,3 +102,18 @@ def test_a_lab_the_grader_does_not_have_is_named(tmp_path):
     path.write_text('lab: nope\npackage: x\n' + LIMITS + 'criteria: [{id: builds, title: t, points: 1}]\n')
     with pytest.raises(rubric.RubricError, match="lab 'nope' is none of the grader's .move_turtlebot3, my_turtle"):
         rubric.load(str(path))
+
+
+def test_what_the_grader_draws_stays_within_the_rubrics_bounds_either_way_round(monkeypatch):
+    # Seeded here: in a grading each draw comes from the system's randomness.
+    seeds = iter(range(40))
+    monkeypatch.setattr(common.random, 'SystemRandom', lambda: random.Random(next(seeds)))
+    speeds = [common.drawn([0.3, 0.8]) for _ in range(20)]
+    turns = [common.drawn([0.3, 0.8], either_way=True) for _ in range(20)]
+    assert all(0.3 <= speed <= 0.8 for speed in speeds) and len(set(speeds)) == 20
+    assert all(0.3 <= abs(turn) <= 0.8 for turn in turns) and min(turns) < 0 < max(turns)
+    # Each lab's drawn settings, in the shipped rubrics, are such bounds.
+    for lab in rubric.labs():
+        for criterion_id, key in getattr(lab_module(lab), 'DRAWN', ()):
+            low, high = rubric.load(lab).criterion(criterion_id)[key]
+            assert 0 < low <= high, (lab, criterion_id, key)

@@ -2,6 +2,7 @@
 kept (bounded), stopped and explained, and each run costing its own criteria only."""
 import errno
 import os
+import random
 import time
 import traceback
 from typing import Callable, NamedTuple
@@ -27,6 +28,15 @@ def criteria_of(static, runs):
     for run in runs:
         criteria.update(run.criteria)
     return criteria
+
+
+def drawn(bounds, either_way=False):
+    """A number drawn for this grading between the rubric's [low, high] (rubric.check_drawn), of
+    either sign when `either_way`: what the grader sends a node, or does to its robot, that no node
+    can know before it comes (a stored printout or a drive by the clock fits no other grading)."""
+    draw = random.SystemRandom()
+    value = draw.uniform(*bounds)
+    return draw.choice((-1, 1)) * value if either_way else value
 
 
 def will_run(session, runs):

@@ -5,7 +5,6 @@ import functools
 import json
 import math
 import os
-import random
 
 import rospy
 from geometry_msgs.msg import Twist, Vector3
@@ -15,7 +14,7 @@ from course_checks.robot import SIMULATOR, RobotWatch, largest_move, node_names,
 from course_checks.verdict import Verdict
 from course_common.waiting import Deadline
 from course_grader import bags, feedback
-from course_grader.labs.common import LabRun, StudentNode, criteria_of, faked, run_each, will_run
+from course_grader.labs.common import LabRun, StudentNode, criteria_of, drawn, faked, run_each, will_run
 from course_grader.wall_limit import NODES
 from course_common.processes import together
 from course_common.waiting import poll_until
@@ -296,8 +295,7 @@ def check_laser_data(session, simulators):
     # The grader turns the robot in place, from a moment its own timing sets, at a speed and in a
     # direction drawn for this grading: no two scans in a row are alike, nor the scans of two
     # gradings (a printout stored from one fits no other), so only a node that reads each scan prints it.
-    draw = random.SystemRandom()
-    turn_speed = draw.choice((-1, 1)) * draw.uniform(*criterion['turn_speed'])
+    turn_speed = drawn(criterion['turn_speed'], either_way=True)
     turn = rospy.Publisher('/cmd_vel', Twist, queue_size=1, latch=True)
     try:
         turn.publish(Twist(angular=Vector3(z=turn_speed)))
@@ -364,9 +362,8 @@ def check_avoid_obstacle(session, simulators):
     # back along its heading, at a moment and by a distance drawn here for this grading and given to
     # fake_tb3 where no node can read them. A node that answers its scans drives and stops again;
     # one that drives by the clock, tuned to the spawn pose, cannot know when or how far.
-    draw = random.SystemRandom()
-    put_back = {'min_drive': stops_c['min_drive'], 'after': draw.uniform(*stops_c['put_back_after']),
-                'distance': draw.uniform(*stops_c['put_back_distance'])}
+    put_back = {'min_drive': stops_c['min_drive'], 'after': drawn(stops_c['put_back_after']),
+                'distance': drawn(stops_c['put_back_distance'])}
     run = Run(session, simulators, stops_c['script'], picture='avoid_obstacle.png',
               grader_settings={'put_back': put_back},
               world=stops_c['world'], x_pos=stops_c['x_pos'],

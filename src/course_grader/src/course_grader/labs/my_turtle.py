@@ -12,7 +12,7 @@ from course_checks import turtle
 from course_checks.robot import node_names
 from course_checks.verdict import Verdict
 from course_common.waiting import Deadline, wait_for
-from course_grader.labs.common import LabRun, criteria_of, run_each
+from course_grader.labs.common import LabRun, criteria_of, drawn, run_each
 from course_grader.labs.turtlesim_runs import TurtlesimLaunch
 from course_grader.wall_limit import NODES, READING
 
@@ -55,8 +55,10 @@ def check_turtle(session):
         watch = launch.poses('turtle1')
         teleop = rospy.Publisher('/cmd_vel_mux/input/teleop', Twist, queue_size=1)
         wait_for(lambda: teleop.get_num_connections() > 0, 10)
+        # A Twist drawn for this grading: a node that publishes a known one on turtle1/cmd_vel, hearing
+        # nothing, does not pass for one that passes the teleop's on.
         command = Twist()
-        command.linear.x, command.angular.z = teleop_c['linear'], teleop_c['angular']
+        command.linear.x, command.angular.z = drawn(teleop_c['linear']), drawn(teleop_c['angular'], either_way=True)
         holding = threading.Event()
         holding.set()
 
@@ -119,6 +121,8 @@ RUNS = (
     }, (READING, NODES, NODES)),
 )
 CRITERIA = criteria_of(STATIC_CRITERIA, RUNS)
+# The settings that are [low, high] bounds of a number drawn at each grading (rubric.check_drawn).
+DRAWN = (('teleop', 'linear'), ('teleop', 'angular'))
 
 
 def run_checks(session):

@@ -19,7 +19,7 @@ from course_checks.verdict import Verdict
 from course_common.waiting import Deadline, wait_in_slices
 from course_common.timing import Pacer
 from course_grader import feedback
-from course_grader.labs.common import LabRun, criteria_of, run_each
+from course_grader.labs.common import LabRun, criteria_of, drawn, run_each
 from course_grader.labs.turtlesim_runs import SimulatedClock, TurtlesimLaunch, describe_launches
 from course_grader.wall_limit import NODES, READING
 
@@ -311,9 +311,10 @@ def check_listener(session):
         # The grader hears every pose from here on: the turtle stands still until then.
         exercise.wait(lambda: poses.count(), 10)
         # Drive the turtle as a teleop would (20 Hz of turtlesim's clock), until the listener has
-        # printed it moving.
+        # printed it moving, on an arc drawn for this grading: poses made up from a known drive
+        # (turtlesim's steps are exact) fit no other grading.
         command = Twist()
-        command.linear.x, command.angular.z = criterion['linear'], criterion['angular']
+        command.linear.x, command.angular.z = drawn(criterion['linear']), drawn(criterion['angular'], either_way=True)
         clock = SimulatedClock(0.05, lambda: teleop.publish(command))
         moved = exercise.wait(lambda: any(float(x) > criterion['until_x'] for x, _, _ in exercise.printed(line)), 10)
         clock.shutdown()
@@ -323,8 +324,9 @@ def check_listener(session):
         if not moved:
             wrong = 'the printed pose did not follow the turtle driven to x > %g (last printed %s)' % (
                 criterion['until_x'], printed[-1],)
-        verdict = Verdict(not wrong, 'expected the pose turtlesim publishes, printed as the turtle moves; seen %s'
-                          % (wrong or judged.reason))
+        verdict = Verdict(not wrong, 'expected the pose turtlesim publishes, printed as the turtle moves (the grader '
+                          'drove it at %.2f m/s turning %.2f rad/s); seen %s' % (
+                              command.linear.x, command.angular.z, wrong or judged.reason))
         return exercise.judged({'listener_prints_pose': exercise.on_interface(poses, 'turtle1') or verdict})
     finally:
         if clock:
@@ -352,8 +354,8 @@ def check_circle(session):
         if len(points) < full_turn:
             wrong, seen = '%d moving poses in %g s, fewer than a full turn (%d)' % (len(points), seconds, full_turn), None
         else:
-            drawn = turtle.circle(points, centre, radius, criterion['tolerance'])
-            wrong, seen = (None if drawn.passed else drawn.reason), None
+            circled = turtle.circle(points, centre, radius, criterion['tolerance'])
+            wrong, seen = (None if circled.passed else circled.reason), None
         if not wrong:
             printed = exercise.printed(r'Turtle subscriber@\[%s, %s, %s\]' % (NUMBER, NUMBER, NUMBER))
             pasted = feedback.paste_run_error(session.rubric.package, exercise.run.output)
@@ -469,6 +471,8 @@ RUNS = (
     }, (NODES,)),
 )
 CRITERIA = criteria_of(STATIC_CRITERIA, RUNS)
+# The settings that are [low, high] bounds of a number drawn at each grading (rubric.check_drawn).
+DRAWN = (('listener_prints_pose', 'linear'), ('listener_prints_pose', 'angular'))
 
 
 def run_checks(session):
