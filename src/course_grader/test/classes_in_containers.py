@@ -111,12 +111,13 @@ def test_example_class_in_containers(lab, tmp_path):
     assert (similar['error'], similar['image']) == (None, os.environ['COURSE_GRADER_IMAGE'])
     assert 'not isolated' not in result.stdout
     if lab == 'move_turtlebot3':
-        # Every student made by a patch of the model shares into_the_wall's changed line (each
-        # patch repeats it); no one else shares anything beyond the given material.
-        patched = sorted(s for s in students if os.path.isfile(os.path.join(EXAMPLES, lab, s + '.patch')))
+        # into_the_wall and each student made of it with one attack more (its twin) share its changed
+        # line (each patch repeats it); no one else shares anything beyond the given material (the
+        # other patches of the model change other lines: timed_drive's avoid_obstacle.py, say).
+        sharing = sorted(s for s in students if s == 'into_the_wall' or expected(lab)[s].get('twin') == 'into_the_wall')
         with open(os.path.join(out, 'similarity.csv'), encoding='utf-8') as stream:
             pairs = sorted((row['student_a'], row['student_b']) for row in csv.DictReader(stream))
-        assert len(patched) >= 3 and pairs == list(itertools.combinations(patched, 2))
+        assert len(sharing) >= 3 and pairs == list(itertools.combinations(sharing, 2))
     # Nothing left running, nothing written where the hostile one tried to write.
     assert grader_containers() - before == set()
     for parent, _, names in os.walk(ROOT):
