@@ -117,11 +117,12 @@ class RealStart(SandboxOutOfProcesses):
         return types.SimpleNamespace(ended=lambda: process.poll() is not None)
 
 
-def test_the_graders_settings_reach_fake_tb3_through_its_fifo_alone(tmp_path):
+def test_the_graders_settings_reach_fake_tb3_through_its_fifo_alone(tmp_path, request):
     # The put-back's moment and distance (fake_tb3.put_back): on the master's parameters or the
     # command line (/proc/PID/cmdline) any node could read them.
     session = RealStart(str(tmp_path))
     prepared = PreparedSimulator(session, 'sim_avoid_obstacle.txt')
+    request.addfinalizer(lambda: [(process.kill(), process.wait()) for process in session.started])
     assert stat.S_IMODE(os.stat(prepared.fifo).st_mode) == 0o600
     settings = '{"put_back": {"min_drive": 0.5, "after": 7.25, "distance": 0.8125}}'
     prepared.start(20, settings)

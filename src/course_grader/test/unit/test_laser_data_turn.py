@@ -54,7 +54,6 @@ class FakeRun(fake_runs.FakeRun):
         self.marks = session.marks
 
 
-
 @pytest.fixture
 def grading(monkeypatch):
     session = types.SimpleNamespace(rubric=rubric.load('move_turtlebot3'), marks=[], waited=[])
