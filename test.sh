@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test of the workspace: ./test.sh        (or only some packages: ./test.sh turtlesim my_turtle)
 # Installs what is missing, builds, then runs the steps: the pure tests (a pytest per folder), the
-# workspace's pytests and the rostests, two (up to five, while the cores are idle) at a time, the ones
+# workspace's pytests and the rostests, two (up to six, while the cores are idle) at a time, the ones
 # that measure rates first, one at a time, with the others beside them at a lower CPU priority, and
 # ends with one line `N passed, N failed` (docs/testing.md).
 # Exit status 0 only if every step found its tests, ran them, and they all passed.
@@ -171,7 +171,7 @@ if [ -s "$jobs_file" ]; then
     if ! "$ROOT/tools/setup.sh" --make tests -j2 > "$LOGS/test_build.log" 2>&1; then
         tail -n 40 "$LOGS/test_build.log"; step_failures+=("building the tests (log $LOGS/test_build.log)")
     fi
-    echo "test: $(wc -l < "$jobs_file") steps (pytest folders and files, rostests), ${TEST_JOBS:-2 to 5} at a time (logs in ${LOGS#"$ROOT"/})"
+    echo "test: $(wc -l < "$jobs_file") steps (pytest folders and files, rostests), ${TEST_JOBS:-2 to 6} at a time (logs in ${LOGS#"$ROOT"/})"
     /usr/bin/python3 "$ROOT/tools/run_test_jobs.py" --jobs "${TEST_JOBS:-auto}" --logs "$LOGS" \
         --times "$BASE/build/test_durations.txt" --first-times "$ROOT/tools/test-step-seconds.txt" \
         --failed-steps "$LOGS/failed_steps.txt" < "$jobs_file" \
