@@ -74,7 +74,7 @@ class BrowserTest(ViewInBrowser):
         teleport = rospy.ServiceProxy('/turtle1/teleport_absolute', TeleportAbsolute)
         set_pen(255, 0, 0, PEN_WIDTH, 0)
         teleport(2.0, 3.0, 0.0)
-        wait_until(lambda: abs(self.pose.latest().x - 2.0) < 1e-4, 10, 'the teleport', poll=0.02)
+        self.pose.wait_for(lambda pose: abs(pose.x - 2.0) < 1e-4, 10, 'the teleport')  # maybe the first pose
         start = self.still_turtle()
         self.press(Keys.ARROW_UP)  # turtle_teleop_key: 2 m/s for 1 s, along +x
         wait_until(lambda: self.pose.latest().x > start.x + 0.5, 20, 'the arrow key to move turtle1', poll=0.02)
