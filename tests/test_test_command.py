@@ -275,23 +275,23 @@ def test_auto_runs_two_then_more_while_the_idle_time_and_their_last_shares_leave
     machine.pass_seconds(1.0)
     assert side_by_side.spare([0.3, 0.3]) == 0.0  # idle, but not for a whole window yet
     machine.pass_seconds(2.5)
-    # 1.6 cores idle; the two running are planned at 0.3 each, of the cores and half a core more.
-    assert side_by_side.spare([0.3, 0.3]) == pytest.approx(1.6)
+    # 1.6 cores idle less the headroom; the two running are planned at 0.3 each: 1.35 left.
+    assert side_by_side.spare([0.3, 0.3]) == pytest.approx(1.35)
     side_by_side.started(0.3)
     machine.pass_seconds(0.5)
     # Half a second later the one just started is not in the idle time yet: its share counts as used.
-    assert side_by_side.spare([0.3, 0.3, 0.3]) == pytest.approx(1.6 - 0.3)
+    assert side_by_side.spare([0.3, 0.3, 0.3]) == pytest.approx(1.6 - 0.3 - 0.25)
     side_by_side.started(None)
-    assert side_by_side.spare([0.3, 0.3, 0.3, None]) == pytest.approx(1.6 - 1.3)  # unknown: a core
+    assert side_by_side.spare([0.3, 0.3, 0.3, None]) == pytest.approx(1.6 - 1.3 - 0.25)  # unknown: a core
     machine.pass_seconds(3.0)
     # A window later both are in the idle time (still 1.6 here); what is planned for them is left.
-    assert side_by_side.spare([0.3, 0.3, 0.3, 0.6]) == pytest.approx(2.5 - 1.5)
+    assert side_by_side.spare([0.3, 0.3, 0.3]) == pytest.approx(2 - 0.9)
     # Two that computed in their last run (0.9 each): what they leave is what may start.
-    assert side_by_side.spare([0.9, 0.9]) == pytest.approx(0.7)
-    assert side_by_side.spare([None, 0.3]) == pytest.approx(1.2)  # unknown: a whole core
+    assert side_by_side.spare([0.9, 0.9]) == pytest.approx(0.2)
+    assert side_by_side.spare([None, 0.3]) == pytest.approx(0.7)  # unknown: a whole core
     assert side_by_side.spare([0.2] * jobs.SideBySide.AUTO_MOST) == 0.0  # never more than AUTO_MOST
     # A busy core beside the tests (another user's loop): nothing beyond the two starts.
-    machine.idle = 0.1
+    machine.idle = 0.3
     machine.pass_seconds(10.0)
     assert side_by_side.spare([0.3, 0.3]) < jobs.needs(0.0)
     assert side_by_side.spare([0.3]) == float('inf')
@@ -331,10 +331,10 @@ def test_the_next_job_starts_when_its_share_fits_and_none_passes_it():
     running = [jobs.Running(None, 'grader', {0}, False, None, 0.0, 'mark'),
                jobs.Running(None, 'rates', {0}, True, None, 0.0, 'mark')]
     assert jobs.next_job(waiting, running[:1], side_by_side, share) == 0  # two at least
-    machine.idle = 0.8
+    machine.idle = 1.0
     machine.pass_seconds(3.5)
-    # Beside the rate step 0.8 of a core may start (the idle time; planned: 2.5 - 0.4 - 0.3): not the
-    # builds (0.89), and the tour (0.25), which would fit, does not pass them.
+    # Beside the rate step 0.75 of a core may start (planned: 2 - 0.4 - 0.3): not the builds (0.89),
+    # and the tour (0.25), which would fit, does not pass them.
     assert jobs.next_job(waiting, running, side_by_side, share) is None
     machine.pass_seconds(3.5)
     assert jobs.next_job(waiting[1:], running, side_by_side, share) == 0
@@ -350,7 +350,7 @@ def test_a_job_that_ends_before_the_room_the_next_waits_for_comes_passes_it():
     machine = FakeMachine()
     side_by_side = jobs.SideBySide('auto', 2, window=3.0, sample=machine.sample, clock=lambda: machine.now)
     known = {'rates': (42.0, 14.7), 'page': (65.0, 63.7), 'grader': (49.0, 40.2), 'waits': (99.0, 8.0),
-             'short': (35.0, 3.9), 'computes': (20.0, 16.0)}
+             'short': (35.0, 3.9), 'computes': (20.0, 14.0)}
     share = lambda label: jobs.cpu_share(known, label)
     wall = lambda label: known.get(label, (None,))[0]
     start = machine.now
@@ -359,10 +359,10 @@ def test_a_job_that_ends_before_the_room_the_next_waits_for_comes_passes_it():
     waiting = [jobs.Job(label, {0}, False, '') for label in ('grader', 'waits', 'computes', 'short')]
     machine.idle = 0.7
     machine.pass_seconds(5.0)
-    # 0.7 of a core may start (the idle time); the room for the grader's comes at 42 s.
+    # 0.45 of a core may start (idle 0.7 less the headroom); the room for the grader's comes at 42 s.
     assert jobs.room_comes(running, 0.82, 2, share, wall) == pytest.approx(start + 42.0)
     assert jobs.next_job(waiting, running, side_by_side, share, wall) == 3      # short: ends at 40 s
-    assert jobs.next_job(waiting[:3], running, side_by_side, share, wall) is None   # waits: 104 s; computes: 0.8
+    assert jobs.next_job(waiting[:3], running, side_by_side, share, wall) is None   # waits: 104 s; computes: 0.7
     machine.pass_seconds(5.0)
     assert jobs.next_job(waiting[:2] + waiting[3:], running, side_by_side, share, wall) is None   # 45 s: too late
     # Room held by the idle time, not by the running jobs' shares: nothing passes (as before).
