@@ -297,7 +297,7 @@ def test_auto_runs_two_then_more_while_the_idle_time_and_their_last_shares_leave
     assert side_by_side.spare([0.3]) == float('inf')
 
 
-def test_after_the_rate_steps_up_to_six_run_while_the_cores_are_idle_at_all():
+def test_after_the_rate_steps_up_to_six_run_while_a_quarter_core_is_idle():
     jobs = load_run_test_jobs()
     machine = FakeMachine()
     side_by_side = jobs.SideBySide('auto', 2, window=3.0, sample=machine.sample, clock=lambda: machine.now)
@@ -336,6 +336,8 @@ def test_the_next_job_starts_when_its_share_fits_and_none_passes_it():
     # Beside the rate step 0.75 of a core may start (planned: 2 - 0.4 - 0.3): not the builds (0.89),
     # and the tour (0.25), which would fit, does not pass them.
     assert jobs.next_job(waiting, running, side_by_side, share) is None
+    # The same beside a shared step: the rate steps are over, the builds start (the idle time left).
+    assert jobs.next_job(waiting, running[:1] + [running[1]._replace(alone=False)], side_by_side, share) == 0
     machine.pass_seconds(3.5)
     assert jobs.next_job(waiting[1:], running, side_by_side, share) == 0
     machine.pass_seconds(3.5)
