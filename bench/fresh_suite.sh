@@ -3,7 +3,8 @@
 # container of the minimal debian:SUITE base image (tools/docker.sh makes it with debootstrap), root,
 # with NET_ADMIN and SYS_ADMIN so that tests/network/test_two_hosts.py runs as on a real machine.
 #   bench/fresh_suite.sh [SUITE]      (bookworm, the default, or trixie)
-# Prints the set-up's end and the closing line with their times, then the whole run's wall time.
+# Prints the set-up's end and the closing line with their times, then the whole run's wall time, and
+# keeps the run's timeline (test.sh's build/test_logs/timeline.txt) as build/fresh-suite-timeline.txt.
 # Run it with nothing else on the machine: the figure is wall time.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -29,5 +30,8 @@ docker run --rm --network host --cap-add NET_ADMIN --cap-add SYS_ADMIN ${proxy:+
         esac
     done || status=$?   # the suite's own status, after the time is printed
 seconds=$(( $(date +%s) - start ))
+mkdir -p "$ROOT/build"
+cp "$clone/ws/build/test_logs/timeline.txt" "$ROOT/build/fresh-suite-timeline.txt" 2>/dev/null \
+    && echo "fresh-suite: the steps' timeline is in build/fresh-suite-timeline.txt"
 printf 'fresh-suite: %d min %d s in all (load now %s)\n' $((seconds / 60)) $((seconds % 60)) "$(cut -d' ' -f1-3 /proc/loadavg)"
 exit "$status"

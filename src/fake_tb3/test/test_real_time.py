@@ -29,7 +29,10 @@ class RealTimeTest(unittest.TestCase):
         cls.imu = TopicRecorder('/imu', Imu)
         cls.tf_buffer = tf2_ros.Buffer()
         cls.tf_listener = tf2_ros.TransformListener(cls.tf_buffer)
-        wait_until(lambda: cls.scan.latest() and cls.odom.latest(), 30, 'scan and odom')
+        # Each recorder's first message: the topics connect one by one (joint_states had none yet
+        # when its test began, in a run of the suite under strace, 2026-12-05).
+        recorders = (cls.scan, cls.odom, cls.joint_states, cls.imu)
+        wait_until(lambda: all(recorder.latest() for recorder in recorders), 30, 'scan, odom, joint_states and imu')
 
     def test_rates(self):
         start = time.monotonic()
