@@ -4,8 +4,10 @@ the run sees another simulator."""
 import errno
 import os
 import re
+import signal
 import stat
 import subprocess
+import sys
 import types
 import xml.etree.ElementTree as ElementTree
 
@@ -13,8 +15,9 @@ import pytest
 import rospkg
 import yaml
 
+from course_common.waiting import wait_until
 from course_grader.labs import move_turtlebot3
-from course_grader.labs.move_turtlebot3 import LAUNCH_DEFAULTS, PreparedSimulator, Simulators
+from course_grader.labs.move_turtlebot3 import LAUNCH_DEFAULTS, PREPARED_FAKE_TB3, PreparedSimulator, Simulators
 
 
 def world_launch_parameters():
@@ -131,3 +134,40 @@ def test_the_graders_settings_reach_fake_tb3_through_its_fifo_alone(tmp_path, re
         assert told.read() == settings
     assert not any('put_back' in arg for arg in session.argv)
     assert not os.path.exists(prepared.fifo)
+
+
+def running(pid):
+    """Whether the process runs (a zombie, ended but not yet reaped by its new parent, does not)."""
+    try:
+        with open('/proc/%d/stat' % pid) as stream:
+            return stream.read().rsplit(')', 1)[1].split()[0] != 'Z'
+    except OSError:
+        return False
+
+
+def test_a_prepared_simulator_ends_when_its_session_is_killed(tmp_path, request):
+    # A session killed with SIGKILL stops nothing it started: its prepared fake_tb3, waiting on a
+    # FIFO that no one would open any more, waited for ever (2026-12-04).
+    stub = tmp_path / 'stub' / 'fake_tb3'
+    stub.mkdir(parents=True)
+    (stub / '__init__.py').write_text('')
+    imported, ran = tmp_path / 'imported', tmp_path / 'ran'
+    (stub / 'node.py').write_text('open(%r, "w").close()\n\n\ndef main(settings):\n    open(%r, "w").close()\n'
+                                  % (str(imported), str(ran)))
+    fifo = str(tmp_path / 'go')
+    os.mkfifo(fifo, 0o600)
+    session = subprocess.Popen(
+        [sys.executable, '-c', 'import subprocess, sys, time\n'
+         'print(subprocess.Popen(sys.argv[1:]).pid, flush=True)\ntime.sleep(120)\n',
+         sys.executable, '-c', PREPARED_FAKE_TB3, fifo, '__name:=fake_tb3'],
+        stdout=subprocess.PIPE, universal_newlines=True, env=dict(os.environ, PYTHONPATH=str(tmp_path / 'stub')))
+    request.addfinalizer(lambda: (session.kill(), session.wait()))
+    simulator = int(session.stdout.readline())
+    request.addfinalizer(lambda: running(simulator) and os.kill(simulator, signal.SIGKILL))
+    # While its session lives, it waits on the FIFO (its modules imported).
+    wait_until(imported.exists, 20, 'the prepared simulator to import fake_tb3')
+    assert running(simulator)
+    session.kill()
+    session.wait()
+    wait_until(lambda: not running(simulator), 5, 'the prepared simulator to end with its session')
+    assert not ran.exists()   # it never ran

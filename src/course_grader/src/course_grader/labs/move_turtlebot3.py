@@ -27,7 +27,15 @@ DRAIN_SECONDS = 2.0
 # it waits until the FIFO named by its first argument is opened for writing, which only the trusted
 # side can do (the FIFO lies in its own folder), once the run's parameters are set. What the grader
 # writes into it are settings no node can read (fake_tb3.put_back), unlike the master's parameters.
-PREPARED_FAKE_TB3 = ('import sys\nfrom fake_tb3.node import main\nwith open(sys.argv[1]) as go:\n'
+# It ends when the session that started it is gone (its parent changes): a session killed with
+# SIGKILL stops nothing it started, and its prepared fake_tb3 waited on the FIFO for ever.
+PREPARED_FAKE_TB3 = ('import os, sys, threading, time\n'
+                     'def end_with_the_session(session=os.getppid()):\n'
+                     '    while os.getppid() == session:\n'
+                     '        time.sleep(0.5)\n'
+                     '    os._exit(1)\n'
+                     'threading.Thread(target=end_with_the_session, daemon=True).start()\n'
+                     'from fake_tb3.node import main\nwith open(sys.argv[1]) as go:\n'
                      '    settings = go.read()\nmain(settings)\n')
 
 
