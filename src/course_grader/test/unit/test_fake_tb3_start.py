@@ -15,6 +15,7 @@ import pytest
 import rospkg
 import yaml
 
+from course_common.process_table import user_processes
 from course_common.waiting import wait_until
 from course_grader.labs import move_turtlebot3
 from course_grader.labs.move_turtlebot3 import LAUNCH_DEFAULTS, PREPARED_FAKE_TB3, PreparedSimulator, Simulators
@@ -136,15 +137,6 @@ def test_the_graders_settings_reach_fake_tb3_through_its_fifo_alone(tmp_path, re
     assert not os.path.exists(prepared.fifo)
 
 
-def running(pid):
-    """Whether the process runs (a zombie, ended but not yet reaped by its new parent, does not)."""
-    try:
-        with open('/proc/%d/stat' % pid) as stream:
-            return stream.read().rsplit(')', 1)[1].split()[0] != 'Z'
-    except OSError:
-        return False
-
-
 def test_a_prepared_simulator_ends_when_its_session_is_killed(tmp_path, request):
     # A session killed with SIGKILL stops nothing it started: its prepared fake_tb3, waiting on a
     # FIFO that no one would open any more, waited for ever (2026-12-04).
@@ -163,11 +155,13 @@ def test_a_prepared_simulator_ends_when_its_session_is_killed(tmp_path, request)
         stdout=subprocess.PIPE, universal_newlines=True, env=dict(os.environ, PYTHONPATH=str(tmp_path / 'stub')))
     request.addfinalizer(lambda: (session.kill(), session.wait()))
     simulator = int(session.stdout.readline())
-    request.addfinalizer(lambda: running(simulator) and os.kill(simulator, signal.SIGKILL))
+    # Alive, not a zombie (one that ended waits for its new parent to reap it).
+    running = lambda: simulator in user_processes(os.getuid())
+    request.addfinalizer(lambda: running() and os.kill(simulator, signal.SIGKILL))
     # While its session lives, it waits on the FIFO (its modules imported).
     wait_until(imported.exists, 20, 'the prepared simulator to import fake_tb3')
-    assert running(simulator)
+    assert running()
     session.kill()
     session.wait()
-    wait_until(lambda: not running(simulator), 5, 'the prepared simulator to end with its session')
+    wait_until(lambda: not running(), 5, 'the prepared simulator to end with its session')
     assert not ran.exists()   # it never ran
