@@ -6,6 +6,8 @@
 #   SUITE       Debian suite of the image: trixie, the default, or bookworm
 #   --no-suite  the image's own checks only, not ./test.sh in it (CI, for the image of the suite whose
 #               every test its host has just run: docs/docker-and-ci.md#ci)
+# When ./test.sh fails in the image, its logs (build/test_logs in the image) are copied to
+# build/docker-test-logs-SUITE.
 # tools/docker.sh reaches or starts the engine and makes the image; a dockerd started here is stopped.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -25,7 +27,18 @@ course_docker_engine
 image=$(course_docker_image "$suite")
 if [ "$run_suite" = yes ]; then
     echo "docker-test: running the tests in $image (user $(docker run --rm "$image" id -un))"
-    docker run --rm --network host "$image" ./test.sh
+    # The container is kept until its logs are out: a step that fails in it says why only there.
+    container=$(docker create --network host "$image" ./test.sh)
+    status=0
+    docker start --attach "$container" || status=$?
+    if [ "$status" != 0 ]; then
+        logs="$ROOT/build/docker-test-logs-$suite"
+        rm -rf "$logs" && mkdir -p "$ROOT/build"
+        docker cp "$container:/home/student/course/build/test_logs" "$logs" > /dev/null \
+            && echo "docker-test: the tests failed in $image; their logs are in ${logs#"$ROOT"/}" >&2
+    fi
+    docker rm "$container" > /dev/null
+    [ "$status" = 0 ] || exit "$status"
 else
     echo "docker-test: $image built; its tests not run here (--no-suite)"
 fi

@@ -1,6 +1,7 @@
 """Starting and stopping programs, by the grader's trusted side, the checks, the tests and the tour:
 a free port for a private master, Ctrl-C as in a terminal, a process group stopped."""
 import os
+import random
 import signal
 import socket
 import subprocess
@@ -9,12 +10,59 @@ import threading
 from course_common.waiting import poll_until
 
 
-def free_port():
-    """A TCP port that is free on loopback now: for a private master, so that we never meet (or
-    take) one the user runs on 11311."""
+# The range Linux gives ports from by itself (to a connection's own end, to a bind to port 0) when
+# /proc does not say, and the port of the user's own roscore.
+KERNEL_PORTS = (32768, 60999)
+USERS_MASTER_PORT = 11311
+# The lowest port free_port chooses: below it, servers a machine may run on fixed ports (databases,
+# X displays' 6000 + n).
+PRIVATE_PORTS_FROM = 10000
+
+
+def kernel_ports(path='/proc/sys/net/ipv4/ip_local_port_range'):
+    """The range of ports (lowest, highest) Linux hands out by itself."""
+    try:
+        with open(path) as text:
+            low, high = (int(field) for field in text.read().split())
+        return low, high
+    except (OSError, ValueError):
+        return KERNEL_PORTS
+
+
+def free_port(tries=100):
+    """A TCP port that is free on loopback now, for a private master: never the user's 11311, and
+    outside the range Linux hands out by itself. A port from a bind to port 0 is in that range, and
+    the kernel may give it to any other program's connection or listener (a node's, another test's)
+    before our master binds it; the master then cannot start (a test's master did not answer in CI,
+    2026-12-05). Chosen at random, so that two callers rarely pick the same one; where the kernel
+    keeps every port, or each one tried is taken, one from the kernel."""
+    low, high = kernel_ports()
+    choices = [(start, end) for start, end in ((PRIVATE_PORTS_FROM, low - 1), (high + 1, 65535)) if start <= end]
+    count = sum(end - start + 1 for start, end in choices)
+    for _ in range(tries if count else 0):
+        index = _RANDOM.randrange(count)
+        for start, end in choices:
+            if index <= end - start:
+                port = start + index
+                break
+            index -= end - start + 1
+        if port != USERS_MASTER_PORT and _bindable(port):
+            return port
     with socket.socket() as probe:
         probe.bind(('127.0.0.1', 0))
         return probe.getsockname()[1]
+
+
+_RANDOM = random.SystemRandom()
+
+
+def _bindable(port):
+    with socket.socket() as probe:
+        try:
+            probe.bind(('127.0.0.1', port))
+        except OSError:
+            return False
+    return True
 
 
 def port_open(port):

@@ -6,6 +6,7 @@ import sys
 import threading
 
 from course_common.process_table import command_line, user_processes
+from course_common import processes
 from course_common.processes import free_port, port_open, stop_process_group, together
 from course_testing.processes import ReadPtyProgram, ignored_signals, run
 from course_common.waiting import wait_until
@@ -81,6 +82,38 @@ def test_a_free_port_can_be_listened_on():
     with socket.socket() as server:
         server.bind(('127.0.0.1', port))
         server.listen()
+
+
+def test_a_free_port_is_never_one_the_kernel_hands_out_by_itself_nor_the_users_master():
+    low, high = processes.kernel_ports()
+    ports = [free_port() for _ in range(300)]
+    assert [port for port in ports if low <= port <= high or port == 11311 or port < 10000] == []
+    assert len(set(ports)) > 250   # at random: two callers rarely meet
+
+
+def test_a_port_something_listens_on_is_not_chosen(monkeypatch):
+    # Two neighbouring ports, the first held by a listener: the only two free_port may choose.
+    taken = None
+    while taken is None:
+        port = free_port()
+        if port + 1 < 65536 and processes._bindable(port + 1):
+            taken = port
+    with socket.socket() as listener:
+        listener.bind(('127.0.0.1', taken))
+        listener.listen()
+        monkeypatch.setattr(processes, 'PRIVATE_PORTS_FROM', taken)
+        monkeypatch.setattr(processes, 'kernel_ports', lambda: (taken + 2, 65535))
+        tried = iter([0, 1])
+        monkeypatch.setattr(processes._RANDOM, 'randrange', lambda count: next(tried))
+        assert free_port() == taken + 1
+
+
+def test_where_the_kernel_keeps_every_port_one_of_its_own_is_used(monkeypatch):
+    low, high = processes.kernel_ports()   # this machine's
+    monkeypatch.setattr(processes, 'kernel_ports', lambda: (1024, 65535))
+    port = free_port()
+    assert low <= port <= high
+    assert processes._bindable(port)
 
 
 # A program started as a background job is (SIGINT and SIGQUIT ignored), which calls restore_ctrl_c and

@@ -17,7 +17,7 @@ import xmlrpc.client
 
 import rosgraph
 
-from course_common.process_table import descendants
+from course_common.process_table import descendants, new_mark, stop_marked, with_mark
 from course_common.processes import stop_process_group
 from course_common.waiting import wait_until
 
@@ -52,7 +52,10 @@ class Process:
         self.name = name
         self.log_path = log_path
         self._log = open(log_path, 'w')
-        self.popen = subprocess.Popen(argv, env=env, stdin=subprocess.DEVNULL,
+        # What it starts carries the mark: a node started in a session of its own after stop() looked
+        # for its children (roscore starting rosmaster as it is stopped) is stopped too.
+        self.mark = new_mark('COURSE_TEST_PROCESS')
+        self.popen = subprocess.Popen(argv, env=with_mark(self.mark, env), stdin=subprocess.DEVNULL,
                                       stdout=stdout or self._log, stderr=self._log,
                                       start_new_session=True, universal_newlines=True)
 
@@ -81,6 +84,7 @@ class Process:
         family = self._family()
         stop_process_group(self.popen, timeout)
         kill_pids(family)
+        stop_marked(self.mark)
         self._log.close()
         return self.popen.returncode
 
@@ -93,6 +97,7 @@ class Process:
             except ProcessLookupError:
                 pass
         kill_pids(family)
+        stop_marked(self.mark)
         self.popen.wait(10)
 
 
@@ -128,8 +133,32 @@ class Processes:
         return '\n'.join('--- %s:\n%s' % (process.name, process.log()[-3000:]) for process in self.started)
 
 
-def master_is_online(uri):
-    return rosgraph.Master('/network_test', master_uri=uri).is_online()
+class _TimedTransport(xmlrpc.client.Transport):
+    """XML-RPC over HTTP whose every wait (connecting, the answer) ends after `seconds`."""
+
+    def __init__(self, seconds):
+        super().__init__()
+        self.seconds = seconds
+
+    def make_connection(self, host):
+        connection = super().make_connection(host)
+        connection.timeout = self.seconds
+        return connection
+
+
+def master_pid(uri, seconds=2.0, started=False):
+    """The process id the ROS master at `uri` gives, or None when none answers within `seconds` (a
+    program that accepts connections on the port and never answers would hold rosgraph's own check,
+    which has no time limit, for ever). With `started`, None too until roscore has set /run_id, the
+    last of its start: a roscore stopped before then took the stop's whole 10 s to end."""
+    master = xmlrpc.client.ServerProxy(uri, transport=_TimedTransport(seconds))
+    try:
+        code, _text, pid = master.getPid('/network_test')
+        if code == 1 and started:
+            code = master.hasParam('/network_test', '/run_id')[2] and 1
+    except (OSError, xmlrpc.client.Error, ValueError):
+        return None
+    return pid if code == 1 else None
 
 
 # Waits, inside a network namespace, until the master of ROS_MASTER_URI answers.
@@ -137,15 +166,29 @@ WAIT_FOR_MASTER = ('import rosgraph\nfrom course_common.waiting import wait_unti
                    'wait_until(rosgraph.is_master_online, 20, "the master of ROS_MASTER_URI", poll=0.1)\n')
 
 
-def start_master(processes, env, port, name='roscore', netns=None):
-    """roscore on `port` (env's ROS_MASTER_URI must name it); returns once the master answers."""
+def start_master(processes, env, port, name='roscore', netns=None, seconds=20):
+    """roscore on `port` (env's ROS_MASTER_URI must name it); returns once its master answers and
+    roscore has set /run_id. When roscore ends first, or that takes more than `seconds`, an
+    AssertionError says so with what roscore printed (its port taken, say)."""
     master = processes.start(name, ['roscore', '-p', str(port)], env, netns=netns)
     if netns:
         # The test's own namespace cannot reach it: ask from inside.
         subprocess.run(['ip', 'netns', 'exec', netns, PYTHON, '-c', WAIT_FOR_MASTER], env=env,
                        timeout=30, check=True)
-    else:
-        wait_until(lambda: master_is_online(env['ROS_MASTER_URI']), 20, 'the master on port %d' % port)
+        return master
+
+    def answers():
+        if not master.running():
+            raise AssertionError('roscore on port %d ended (exit %d) before its master answered; it printed:\n%s'
+                                 % (port, master.popen.returncode, master.log()[-2000:]))
+        # Ours, not a master another program started on the port first (roscore then ends).
+        return master_pid(env['ROS_MASTER_URI'], started=True) in descendants(master.pid)
+    try:
+        wait_until(answers, seconds, 'the master on port %d' % port, poll=0.05)
+    except AssertionError as error:
+        if master.running():
+            raise AssertionError('%s; roscore printed:\n%s' % (error, master.log()[-2000:])) from None
+        raise
     return master
 
 
