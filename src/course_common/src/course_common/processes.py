@@ -33,8 +33,8 @@ def free_port(tries=100):
     """A TCP port that is free on loopback now, for a private master: never the user's 11311, and
     outside the range Linux hands out by itself. A port from a bind to port 0 is in that range, and
     the kernel may give it to any other program's connection or listener (a node's, another test's)
-    before our master binds it; the master then cannot start (a test's master did not answer in CI,
-    2026-12-05). Chosen at random, so that two callers rarely pick the same one; where the kernel
+    before our master binds it; the master then cannot start (the likely cause of a test's master
+    that did not answer in CI, 2026-12-05). Chosen at random, so that two callers rarely pick the same one; where the kernel
     keeps every port, or each one tried is taken, one from the kernel."""
     low, high = kernel_ports()
     choices = [(start, end) for start, end in ((PRIVATE_PORTS_FROM, low - 1), (high + 1, 65535)) if start <= end]
