@@ -34,19 +34,12 @@ def free_port(tries=100):
     outside the range Linux hands out by itself. A port from a bind to port 0 is in that range, and
     the kernel may give it to any other program's connection or listener (a node's, another test's)
     before our master binds it; the master then cannot start (the likely cause of a test's master
-    that did not answer in CI, 2026-12-05). Chosen at random, so that two callers rarely pick the same one; where the kernel
-    keeps every port, or each one tried is taken, one from the kernel."""
+    that did not answer in CI, 2026-12-05). Chosen at random, so that two callers rarely pick the
+    same one; where no port tried will do (the kernel keeps them all), one from the kernel."""
     low, high = kernel_ports()
-    choices = [(start, end) for start, end in ((PRIVATE_PORTS_FROM, low - 1), (high + 1, 65535)) if start <= end]
-    count = sum(end - start + 1 for start, end in choices)
-    for _ in range(tries if count else 0):
-        index = _RANDOM.randrange(count)
-        for start, end in choices:
-            if index <= end - start:
-                port = start + index
-                break
-            index -= end - start + 1
-        if port != USERS_MASTER_PORT and _bindable(port):
+    for _ in range(tries):
+        port = _RANDOM.randrange(PRIVATE_PORTS_FROM, 65536)
+        if not low <= port <= high and port != USERS_MASTER_PORT and _bindable(port):
             return port
     with socket.socket() as probe:
         probe.bind(('127.0.0.1', 0))

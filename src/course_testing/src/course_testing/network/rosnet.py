@@ -8,7 +8,6 @@ flood.py), which also lets it run inside a network namespace.
 import functools
 import json
 import os
-import signal
 import socket
 import subprocess
 import threading
@@ -52,8 +51,7 @@ class Process:
         self.name = name
         self.log_path = log_path
         self._log = open(log_path, 'w')
-        # What it starts carries the mark: a node started in a session of its own after stop() looked
-        # for its children (roscore starting rosmaster as it is stopped) is stopped too.
+        # Everything it starts carries the mark, which stop() and kill() find them by.
         self.mark = new_mark('COURSE_TEST_PROCESS')
         self.popen = subprocess.Popen(argv, env=with_mark(self.mark, env), stdin=subprocess.DEVNULL,
                                       stdout=stdout or self._log, stderr=self._log,
@@ -70,43 +68,23 @@ class Process:
         with open(self.log_path) as log:
             return log.read()
 
-    def _family(self):
-        """The processes it started, while it runs (once reaped, its PID may be another process's)."""
-        return descendants(self.popen.pid) if self.running() else []
-
     def stop(self, timeout=10.0):
         """Ctrl-C the group as a terminal would, SIGKILL it if it hangs; returns the exit code.
         Safe to call again, and after kill().
 
-        roslaunch (and so roscore) puts each node in a session of its own: the nodes it started are
-        found by parentage first and killed by PID if they outlive it.
+        roslaunch (and so roscore) puts each node in a session of its own, which no process group
+        reaches: what carries the process's mark once the group has gone is killed (a node started
+        as the group was being stopped too: roscore's rosmaster).
         """
-        family = self._family()
         stop_process_group(self.popen, timeout)
-        kill_pids(family)
         stop_marked(self.mark)
         self._log.close()
         return self.popen.returncode
 
     def kill(self):
         """SIGKILL the process and everything it started (a crash, as the rest of the graph sees it)."""
-        family = self._family()
-        if self.running():
-            try:
-                os.killpg(self.popen.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
-        kill_pids(family)
         stop_marked(self.mark)
         self.popen.wait(10)
-
-
-def kill_pids(pids):
-    for pid in pids:
-        try:
-            os.kill(pid, signal.SIGKILL)
-        except ProcessLookupError:
-            pass
 
 
 class Processes:
@@ -154,41 +132,53 @@ def master_pid(uri, seconds=2.0, started=False):
     master = xmlrpc.client.ServerProxy(uri, transport=_TimedTransport(seconds))
     try:
         code, _text, pid = master.getPid('/network_test')
-        if code == 1 and started:
-            code = master.hasParam('/network_test', '/run_id')[2] and 1
+        if code == 1 and started and not master.hasParam('/network_test', '/run_id')[2]:
+            return None
     except (OSError, xmlrpc.client.Error, ValueError):
         return None
     return pid if code == 1 else None
 
 
-# Waits, inside a network namespace, until the master of ROS_MASTER_URI answers.
-WAIT_FOR_MASTER = ('import rosgraph\nfrom course_common.waiting import wait_until\n'
-                   'wait_until(rosgraph.is_master_online, 20, "the master of ROS_MASTER_URI", poll=0.1)\n')
+def own_master_answers(uri, roscore):
+    """Whether the master at `uri` is the one roscore (its process id) started, and roscore is up:
+    not a master another program started on the port first (roscore then ends)."""
+    return master_pid(uri, started=True) in descendants(roscore)
+
+
+# In a network namespace (the test's own cannot reach it): exit 0 once the master of argv[1] is
+# roscore's (argv[2]), within argv[3] seconds.
+WAIT_IN_NAMESPACE = ('import sys\nfrom course_common.waiting import poll_until\n'
+                     'from course_testing.network.rosnet import own_master_answers\n'
+                     'uri, roscore, seconds = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])\n'
+                     'sys.exit(0 if poll_until(lambda: own_master_answers(uri, roscore), seconds, 0.05) else 1)\n')
 
 
 def start_master(processes, env, port, name='roscore', netns=None, seconds=20):
     """roscore on `port` (env's ROS_MASTER_URI must name it); returns once its master answers and
-    roscore has set /run_id. When roscore ends first, or that takes more than `seconds`, an
-    AssertionError says so with what roscore printed (its port taken, say)."""
+    roscore has set /run_id (asked from inside `netns` when given). When roscore ends first, or that
+    takes more than `seconds`, an AssertionError says so with what roscore printed (its port taken,
+    say)."""
     master = processes.start(name, ['roscore', '-p', str(port)], env, netns=netns)
+    uri = env['ROS_MASTER_URI']
+    asking = None
     if netns:
-        # The test's own namespace cannot reach it: ask from inside.
-        subprocess.run(['ip', 'netns', 'exec', netns, PYTHON, '-c', WAIT_FOR_MASTER], env=env,
-                       timeout=30, check=True)
-        return master
+        asking = subprocess.Popen(['ip', 'netns', 'exec', netns, PYTHON, '-c', WAIT_IN_NAMESPACE, uri,
+                                   str(master.pid), str(seconds)], env=env, start_new_session=True)
 
     def answers():
         if not master.running():
             raise AssertionError('roscore on port %d ended (exit %d) before its master answered; it printed:\n%s'
                                  % (port, master.popen.returncode, master.log()[-2000:]))
-        # Ours, not a master another program started on the port first (roscore then ends).
-        return master_pid(env['ROS_MASTER_URI'], started=True) in descendants(master.pid)
+        return asking.poll() == 0 if asking else own_master_answers(uri, master.pid)
     try:
         wait_until(answers, seconds, 'the master on port %d' % port, poll=0.05)
     except AssertionError as error:
         if master.running():
             raise AssertionError('%s; roscore printed:\n%s' % (error, master.log()[-2000:])) from None
         raise
+    finally:
+        if asking:
+            stop_process_group(asking)
     return master
 
 
