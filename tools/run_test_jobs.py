@@ -19,9 +19,10 @@ cores have room for the next: over the last few seconds the cores were idle for 
 share in its last run (a whole core when unknown) and HEADROOM more, and the running jobs' shares
 with it fit in the cores. Most steps wait for robots moving in real time (a quarter of a core), so
 on a quiet machine four or five run; on a loaded one the idle time is not there and two run, as
-with --jobs 2. Once the rate steps are over, up to six, while a quarter of a core was idle. They
-start in order (the most core-seconds first): one that computes waits for its room, and lighter
-ones do not pass it, unless they end before that room comes (next_job).
+with --jobs 2. Once the rate steps are over, up to six, while a quarter of a core was idle, those
+just started not counted against it. They start in order (the most core-seconds first): one that
+computes waits for its room, and lighter ones do not pass it, unless they end before that room
+comes (next_job).
 
 Prints one line per job as it ends (label, seconds, CPU seconds of all it ran, exit status), and
 under a job that failed the lines of its log that say why. Each job's whole output goes to
@@ -137,11 +138,13 @@ class SideBySide:
     jobs='auto', once two run, what both the cores' idle time over the last `window` seconds (less
     what the jobs started within them are taken to use: their start is not in it yet) and the
     running jobs' shares (from their last run) leave, up to AUTO_MOST jobs. Once the rate steps are
-    over, up to AUTO_MOST_AFTER_RATES, each while a quarter of a core of that idle time is left:
-    nothing measures wall-clock rates any more, so a core that gets more than it can do only
-    stretches the steps on it, which every step holds with (a busy core beside it), and the shares
-    planned, averages, no longer hold a job back (they left the cores idle a fifth of the time
-    after the rate steps, 2026-12-05). Where the idle time is not there (a loaded machine), two run."""
+    over, up to AUTO_MOST_AFTER_RATES, each while a quarter of a core was idle over the window,
+    the jobs started within it not counted against that: nothing measures wall-clock rates any
+    more, so a core that gets more than it can do only stretches the steps on it, which every step
+    holds with (a busy core beside it); the shares planned, averages, held a job back (the cores
+    idle a fifth of the time after the rate steps), and so did each start counted for a whole
+    window (at most one start in 3 s: 3 steps of 10 s side by side where six could run, the cores
+    a fifth idle again, 2026-12-05). Where the idle time is not there (a loaded machine), two run."""
     AUTO, AUTO_MOST, AUTO_MOST_AFTER_RATES = 2, 5, 6
 
     def __init__(self, jobs, cores, window=3.0, sample=cpu_sample, clock=time.monotonic):
@@ -180,11 +183,11 @@ class SideBySide:
         idle = self.idle()
         if idle is None:
             return 0.0
+        if rates_done:
+            return float('inf') if idle >= LIGHTEST_SHARE else 0.0
         while self.starts and self.clock() - self.starts[0][0] >= self.window:
             self.starts.popleft()
         left = idle - sum(uses for _, uses in self.starts)
-        if rates_done:
-            return float('inf') if left >= LIGHTEST_SHARE else 0.0
         planned = self.cores - sum(needs(share) for share in shares)
         return min(left - HEADROOM, planned)
 
