@@ -29,6 +29,9 @@ if [ "$run_suite" = yes ]; then
     echo "docker-test: running the tests in $image (user $(docker run --rm "$image" id -un))"
     # The container is kept until its logs are out: a step that fails in it says why only there.
     container=$(docker create --network host "$image" ./test.sh)
+    # A run cancelled meanwhile (Ctrl-C, a CI runner's SIGTERM) removes it too, instead of leaving it
+    # stopped in the course's data root; a dockerd started here is stopped after it, as before.
+    trap 'docker rm --force "$container" > /dev/null 2>&1; course_docker_stop' EXIT
     status=0
     docker start --attach "$container" || status=$?
     if [ "$status" != 0 ]; then
@@ -38,6 +41,7 @@ if [ "$run_suite" = yes ]; then
             && echo "docker-test: the tests failed in $image; their logs are in ${logs#"$ROOT"/}" >&2
     fi
     docker rm "$container" > /dev/null
+    trap course_docker_stop EXIT
     [ "$status" = 0 ] || exit "$status"
 else
     echo "docker-test: $image built; its tests not run here (--no-suite)"

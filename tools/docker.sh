@@ -39,10 +39,16 @@ course_docker_stop() {
 # Starts our dockerd with storage driver $1; true once it answers.
 _course_dockerd_start() {
     echo "docker: starting dockerd ($1, data in $COURSE_DOCKER_ROOT)" >&2
+    # In a process group of its own (job control on for this start): a Ctrl-C or a CI runner's signal
+    # to the caller's group leaves it to course_docker_stop, after the caller removed its containers.
+    local monitor=${-//[^m]/}
+    set -m
     dockerd --data-root "$COURSE_DOCKER_ROOT/data" --exec-root "$COURSE_DOCKER_ROOT/exec" \
             --pidfile "$COURSE_DOCKER_ROOT/dockerd.pid" --host "$DOCKER_HOST" --storage-driver="$1" \
             --iptables=false --ip-masq=false --bridge=none > "$COURSE_DOCKER_ROOT/dockerd-$1.log" 2>&1 &
     _course_dockerd_pid=$!
+    disown "$_course_dockerd_pid"   # no job notice when it ends: course_docker_stop waits for it
+    [ -n "$monitor" ] || set +m
     trap course_docker_stop EXIT
     local _
     for _ in $(seq 300); do
