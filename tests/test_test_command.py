@@ -309,8 +309,8 @@ def test_after_the_rate_steps_up_to_six_run_while_a_quarter_core_is_idle():
     assert side_by_side.spare([0.9, 0.9, 0.9]) < jobs.needs(0.0)  # nor beyond the plan
     side_by_side.started(0.3)
     side_by_side.started(None)
-    # Nor do the ones just started, which are not in the idle time yet: beside a rate step they are
-    # taken to use it, after the rate steps the next starts at once.
+    # Two just started, not in the idle time yet: beside a rate step they are taken to use it (no
+    # third starts); after the rate steps they are not, and the next starts at once.
     assert side_by_side.spare([0.1, 0.1, 0.1]) < jobs.needs(0.0)
     assert side_by_side.spare([0.9] * 4, rates_done=True) == float('inf')
     assert side_by_side.spare([0.1] * jobs.SideBySide.AUTO_MOST_AFTER_RATES, rates_done=True) == 0.0
