@@ -107,11 +107,21 @@ class Grader:
         self.lock = threading.Lock()
         self.done = 0
         self.total = 0
+        self.interrupted = threading.Event()   # Ctrl-C: the gradings under way are cut short
 
     def grade_all(self, submissions):
+        """Every submission's result, in order. On Ctrl-C (KeyboardInterrupt here) the ones not
+        started never start, the ones under way end (their sessions got the Ctrl-C too) with no
+        grade, folder nor line, and the KeyboardInterrupt goes on: a grading cut short is no 0."""
         self.total = len(submissions)
-        with ThreadPoolExecutor(max_workers=self.jobs) as pool:
+        pool = ThreadPoolExecutor(max_workers=self.jobs)
+        try:
             return list(pool.map(self.grade_one, submissions))
+        except KeyboardInterrupt:
+            self.interrupted.set()
+            raise
+        finally:
+            pool.shutdown(wait=True, cancel_futures=True)
 
     def grade_one(self, path):
         who = student_of(path)
@@ -126,6 +136,9 @@ class Grader:
             result = results.failed(self.rubric, student, 'the grader failed on this submission: %r' % error)
         finally:
             shutil.rmtree(scratch, ignore_errors=True)
+        if self.interrupted.is_set():
+            shutil.rmtree(folder, ignore_errors=True)
+            return None
         result.update(seconds=time.monotonic() - started, student=who.name, student_id=who.id, folder=student)
         if self.late:
             result = results.with_late(result, self.late, submitted(path))
@@ -208,7 +221,13 @@ def main(argv=None):
         print('grade: late work: after %s%s, -%g%% of the maximum score per day begun, at most -%g%%' % (
             late.deadline.isoformat(), ' and %g minutes of grace' % (late.grace.total_seconds() / 60)
             if late.grace else '', late.per_day, late.cap), flush=True)
-    class_results = grader.grade_all(args.submissions)
+    try:
+        class_results = grader.grade_all(args.submissions)
+    except KeyboardInterrupt:
+        print('grade: interrupted (Ctrl-C) after %d of %d students: %s holds their results, but no '
+              'grades.csv nor report; grade again to grade the class' % (grader.done, len(args.submissions),
+                                                                         args.out), file=sys.stderr, flush=True)
+        return 130
     seconds = time.monotonic() - started
     gone = sorted(set(previous) - {result['folder'] for result in class_results})
     if gone:

@@ -2,12 +2,14 @@
 back from a sandbox (sandbox)."""
 import io
 import os
+import signal
 import tarfile
 import subprocess
+import threading
 
 import pytest
 
-from course_grader import grader, sandbox
+from course_grader import grader, results, rubric as rubrics, sandbox
 
 
 def test_out_folder_new_then_replaced_and_a_foreign_one_refused(tmp_path):
@@ -87,3 +89,62 @@ def test_a_session_sending_more_than_the_limit_is_read_to_its_end_and_cut():
         sandbox.read_at_most(pipe, kept, 1000)
     assert sender.wait(10) == 0   # never blocked on a full pipe
     assert kept == b'\0' * 1000
+
+
+def test_ctrl_c_while_grading_gives_no_grade_to_the_gradings_it_cut_short(tmp_path, monkeypatch, capsys):
+    # Four students, two at a time: alice is graded, then bob and carol are under way when the
+    # teacher presses Ctrl-C (their sessions got it too and end), and dave never starts.
+    students = []
+    for name in ('alice', 'bob', 'carol', 'dave'):
+        (tmp_path / name).mkdir()
+        students.append(str(tmp_path / name))
+    out = tmp_path / 'grades'
+    grader.prepare_out(str(out))
+    rubric = rubrics.load('my_turtle')
+    class_grader = grader.Grader(rubric, str(out), sandbox.Options(image=None), jobs=2)
+    under_way = []
+    both_under_way = threading.Event()
+
+    def fake_grade(path, student, folder, scratch):
+        if student != 'alice':
+            under_way.append(student)
+            if len(under_way) == 2:
+                both_under_way.set()
+            assert class_grader.interrupted.wait(30), 'no Ctrl-C came'
+            return results.failed(rubric, student, 'the grading stopped with exit status 130')
+        return results.failed(rubric, student, 'graded')
+
+    monkeypatch.setattr(class_grader, '_grade', fake_grade)
+    main_thread = threading.get_ident()
+
+    def press_ctrl_c():
+        assert both_under_way.wait(30)
+        signal.pthread_kill(main_thread, signal.SIGINT)
+
+    previous_handler = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        teacher = threading.Thread(target=press_ctrl_c)
+        teacher.start()
+        with pytest.raises(KeyboardInterrupt):
+            class_grader.grade_all(students)
+        teacher.join()
+    finally:
+        signal.signal(signal.SIGINT, previous_handler)
+    assert sorted(under_way) == ['bob', 'carol']
+    assert sorted(os.listdir(str(out))) == sorted([grader.MARKER, 'alice'])
+    assert class_grader.done == 1
+    lines = capsys.readouterr().out.splitlines()
+    assert len(lines) == 1 and lines[0].startswith('grade: [1/4] alice: 0 / '), lines
+
+
+def test_ctrl_c_ends_the_grading_in_one_sentence_and_exit_130(tmp_path, monkeypatch, capsys):
+    (tmp_path / 'alice').mkdir()
+
+    def interrupted(self, submissions):
+        raise KeyboardInterrupt
+    monkeypatch.setattr(grader.Grader, 'grade_all', interrupted)
+    out = tmp_path / 'grades'
+    assert grader.main(['my_turtle', str(tmp_path / 'alice'), '--no-container', '--out', str(out)]) == 130
+    assert capsys.readouterr().err == ('grade: interrupted (Ctrl-C) after 0 of 1 students: %s holds their results, '
+                                       'but no grades.csv nor report; grade again to grade the class\n' % out)
+    assert not (out / 'grades.csv').exists()
