@@ -8,6 +8,7 @@ import datetime
 import importlib
 import json
 import os
+import shutil
 import sys
 import threading
 import time
@@ -174,7 +175,13 @@ def main(argv=None):
     # only what changed, as the student's own does; on all the machine's cores (one session).
     options = Options(only=args.only, on_step=lambda step: print('check: %s' % step, flush=True),
                       build_cache=os.path.join(checks, BUILD_CACHE, args.lab), build_jobs=os.cpu_count() or 1)
-    result = Grader(rubric, out, options, announce=False).grade_one(folder)
+    try:
+        result = Grader(rubric, out, options, announce=False).grade_one(folder)
+    except KeyboardInterrupt:   # what it started is stopped by then (the session's finally blocks)
+        shutil.rmtree(out, ignore_errors=True)   # no half check among the kept ones
+        print('check: stopped (Ctrl-C) before the end: nothing was checked, your last check is still '
+              'the one shown', file=sys.stderr, flush=True)
+        return 130
     due = rubric.late.due() if rubric.late else None
     print_result(result, args.only, due)
     student = os.path.join(out, result['folder'])
